@@ -1,0 +1,26 @@
+#pragma once
+// The frame every tool's main() runs in: --help, --version, and the mapping
+// of exceptions to messages and exit codes (0 ok, 1 run failure, 2 bad usage
+// or unreadable input). Tools are callable in-process from an argv vector.
+
+#include <mr/cli/options.h>
+
+#include <functional>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace mr::cli {
+
+enum ExitCode : int { exit_ok = 0, exit_failure = 1, exit_bad_input = 2 };
+
+/// Parses `args` with `spec` and calls `body(positionals)`. `args` excludes the program name.
+int run_tool(const ToolSpec& spec, const std::vector<std::string>& args, std::ostream& out,
+             std::ostream& err, const std::function<void(const std::vector<std::string>&)>& body);
+
+/// argv to a vector, without argv[0].
+std::vector<std::string> arguments(int argc, char** argv);
+
+std::string version_string();
+
+}  // namespace mr::cli

@@ -1,0 +1,43 @@
+#pragma once
+// Typed exceptions. Library code throws these; only a tool's main() turns
+// them into messages and exit codes (InputError and UsageError: 2, others: 1).
+
+#include <stdexcept>
+#include <string>
+
+namespace mr {
+
+/// Base of every error the library reports on purpose.
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A file that cannot be read as the mesh it claims to be: missing, empty,
+/// truncated, inconsistent, or in an unknown format. The message names the file.
+class InputError : public Error {
+ public:
+  InputError(const std::string& path, const std::string& problem)
+      : Error(path + ": " + problem), path_(path), problem_(problem) {}
+  const std::string& path() const { return path_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string path_;
+  std::string problem_;
+};
+
+/// Bad options or arguments given by the caller.
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
+
+/// A run that could not complete on valid input (write failure, a stage
+/// that could not reach its contract).
+class RunError : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace mr

@@ -1,0 +1,28 @@
+#pragma once
+// A tetrahedral mesh: positions, tets (positively oriented: orient3d > 0 in
+// the convention of mr::orient3d), a label per tet, and optionally labelled
+// surface triangles (boundary or interface faces carried by MSH and Medit files).
+
+#include <mr/core/types.h>
+
+#include <vector>
+
+namespace mr {
+
+struct TetMesh {
+  std::vector<Vec3d> positions;
+  std::vector<Tet> tets;
+  std::vector<std::int32_t> tet_labels;  ///< empty or tets.size() entries
+
+  std::vector<Triangle> faces;            ///< optional tagged surface triangles
+  std::vector<std::int32_t> face_labels;  ///< empty or faces.size() entries
+
+  std::size_t num_vertices() const { return positions.size(); }
+  std::size_t num_tets() const { return tets.size(); }
+  bool has_tet_labels() const { return !tet_labels.empty(); }
+};
+
+/// Returns a description of the first structural inconsistency or "".
+std::string find_tet_mesh_inconsistency(const TetMesh& mesh);
+
+}  // namespace mr

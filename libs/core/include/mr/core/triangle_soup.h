@@ -1,0 +1,48 @@
+#pragma once
+// A triangle soup: the most permissive surface representation. It holds any
+// input as it was read: non-manifold edges, duplicate and zero-area faces,
+// faces with repeated vertex indices and isolated vertices are all kept.
+
+#include <mr/core/types.h>
+
+#include <string>
+#include <vector>
+
+namespace mr {
+
+struct TriangleSoup {
+  std::vector<Vec3d> positions;
+  std::vector<Triangle> triangles;
+
+  // Optional per-vertex attributes: each is empty or has positions.size() entries.
+  std::vector<Vec3f> normals;
+  std::vector<Vec2f> uvs;
+  std::vector<Vec4f> colors;  ///< RGBA in [0,1]
+
+  // Optional per-face region (material) id: empty or triangles.size() entries.
+  std::vector<std::int32_t> face_regions;
+  /// Optional names of regions, indexed by region id (e.g. glTF material names).
+  std::vector<std::string> region_names;
+
+  std::size_t num_vertices() const { return positions.size(); }
+  std::size_t num_triangles() const { return triangles.size(); }
+  bool has_normals() const { return !normals.empty(); }
+  bool has_uvs() const { return !uvs.empty(); }
+  bool has_colors() const { return !colors.empty(); }
+  bool has_face_regions() const { return !face_regions.empty(); }
+
+  /// Appends `other`, offsetting its indices. Attributes present in only one
+  /// of the two soups are dropped (a soup carries an attribute for all or none).
+  void append(const TriangleSoup& other);
+};
+
+/// Returns a description of the first structural inconsistency (index out of
+/// range, attribute array of the wrong size, non-finite coordinate), or an
+/// empty string when the soup is consistent.
+std::string find_soup_inconsistency(const TriangleSoup& soup);
+
+/// Axis-aligned bounding box diagonal length of the referenced and unreferenced
+/// vertices alike; 0 for an empty soup.
+double bounding_box_diagonal(const TriangleSoup& soup);
+
+}  // namespace mr

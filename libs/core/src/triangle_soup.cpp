@@ -1,0 +1,75 @@
+#include <mr/core/triangle_soup.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+
+namespace mr {
+namespace {
+
+template <class T>
+void append_attribute(std::vector<T>& mine, const std::vector<T>& theirs, bool keep) {
+  if (keep)
+    mine.insert(mine.end(), theirs.begin(), theirs.end());
+  else
+    mine.clear();
+}
+
+template <class T>
+std::string check_size(const std::vector<T>& attribute, std::size_t expected, const char* name) {
+  if (attribute.empty() || attribute.size() == expected) return {};
+  return std::string(name) + " has " + std::to_string(attribute.size()) + " entries, expected " +
+         std::to_string(expected);
+}
+
+}  // namespace
+
+void TriangleSoup::append(const TriangleSoup& other) {
+  const bool first = positions.empty() && triangles.empty();
+  const auto offset = static_cast<Index>(positions.size());
+  const std::size_t old_triangles = triangles.size();
+  append_attribute(normals, other.normals, first || (has_normals() && other.has_normals()));
+  append_attribute(uvs, other.uvs, first || (has_uvs() && other.has_uvs()));
+  append_attribute(colors, other.colors, first || (has_colors() && other.has_colors()));
+  positions.insert(positions.end(), other.positions.begin(), other.positions.end());
+  for (const Triangle& t : other.triangles) triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+
+  if (has_face_regions() || other.has_face_regions()) {
+    face_regions.resize(old_triangles, 0);
+    if (other.has_face_regions())
+      face_regions.insert(face_regions.end(), other.face_regions.begin(), other.face_regions.end());
+    else
+      face_regions.resize(triangles.size(), 0);
+  }
+  if (region_names.size() < other.region_names.size())
+    region_names.resize(other.region_names.size());
+  for (std::size_t i = 0; i < other.region_names.size(); ++i)
+    if (region_names[i].empty()) region_names[i] = other.region_names[i];
+}
+
+std::string find_soup_inconsistency(const TriangleSoup& soup) {
+  const std::size_t n = soup.positions.size();
+  for (std::size_t v = 0; v < n; ++v)
+    if (!soup.positions[v].allFinite())
+      return "vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or Inf)";
+  for (std::size_t f = 0; f < soup.triangles.size(); ++f)
+    for (Index i : soup.triangles[f])
+      if (i >= n)
+        return "triangle " + std::to_string(f) + " refers to vertex " + std::to_string(i) +
+               " but there are only " + std::to_string(n) + " vertices";
+  for (const std::string& problem :
+       {check_size(soup.normals, n, "normals"), check_size(soup.uvs, n, "texture coordinates"),
+        check_size(soup.colors, n, "colors"),
+        check_size(soup.face_regions, soup.triangles.size(), "face regions")})
+    if (!problem.empty()) return problem;
+  return {};
+}
+
+double bounding_box_diagonal(const TriangleSoup& soup) {
+  if (soup.positions.empty()) return 0.0;
+  Eigen::AlignedBox3d box;
+  for (const Vec3d& p : soup.positions) box.extend(p);
+  return box.diagonal().norm();
+}
+
+}  // namespace mr

@@ -1,0 +1,30 @@
+#pragma once
+// Reading and writing meshes through a registry. These functions add what
+// every format needs: the file must exist and not be empty, the result is
+// checked for consistency (indices in range, finite coordinates), and output
+// is written to a temporary file renamed into place, so that a failed or
+// interrupted write never leaves a half-written file.
+
+#include <mr/io/registry.h>
+
+namespace mr::io {
+
+/// Reads a surface. A volume file is accepted too: its boundary is returned.
+TriangleSoup read_surface(const Registry& registry, const std::filesystem::path& path,
+                          const ReadOptions& options = {});
+
+/// Reads a volume mesh; throws InputError if `path` is a surface format.
+TetMesh read_volume(const Registry& registry, const std::filesystem::path& path,
+                    const ReadOptions& options = {});
+
+/// True if the format chosen for `path` (or options.format) holds a volume mesh.
+bool is_volume_format(const Registry& registry, const std::filesystem::path& path,
+                      const std::string& explicit_format = {});
+
+void write_surface(const Registry& registry, const TriangleSoup& soup,
+                   const std::filesystem::path& path, const WriteOptions& options = {});
+
+void write_volume(const Registry& registry, const TetMesh& mesh,
+                  const std::filesystem::path& path, const WriteOptions& options = {});
+
+}  // namespace mr::io

@@ -1,0 +1,63 @@
+#pragma once
+// The format registry: plugins register one Format per file format; the I/O
+// core picks a format by file extension or by an explicit name. There is no
+// global registry: callers build one (see mr/io/default_registry.h).
+
+#include <mr/core/tet_mesh.h>
+#include <mr/core/triangle_soup.h>
+#include <mr/io/options.h>
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mr::io {
+
+enum class MeshKind { surface, volume };
+
+/// One file format. A reader or writer that the format lacks is left empty.
+/// Readers throw mr::InputError naming the file on anything they cannot read;
+/// writers throw mr::RunError. A writer is handed a temporary path with the
+/// destination's extension; the core renames it into place on success.
+struct Format {
+  std::string name;                     ///< short unique name, e.g. "stl"
+  std::vector<std::string> extensions;  ///< lower case with dot, e.g. {".stl"}
+  MeshKind kind = MeshKind::surface;
+  std::string description;
+
+  std::function<TriangleSoup(const std::filesystem::path&, const ReadOptions&)> read_surface;
+  std::function<void(const TriangleSoup&, const std::filesystem::path&, const WriteOptions&)>
+      write_surface;
+  std::function<TetMesh(const std::filesystem::path&, const ReadOptions&)> read_volume;
+  std::function<void(const TetMesh&, const std::filesystem::path&, const WriteOptions&)>
+      write_volume;
+
+  bool can_read() const { return read_surface || read_volume; }
+  bool can_write() const { return write_surface || write_volume; }
+};
+
+class Registry {
+ public:
+  /// Adds a format; throws std::logic_error if its name or an extension is taken.
+  void add(Format format);
+
+  /// The format named `name`, or nullptr.
+  const Format* by_name(const std::string& name) const;
+  /// The format for the extension of `path` (case-insensitive), or nullptr.
+  const Format* by_extension(const std::filesystem::path& path) const;
+  /// by_name(explicit_name) if it is not empty, else by_extension(path);
+  /// throws InputError (for reading) or UsageError (for writing) when none fits.
+  const Format& resolve_for_read(const std::filesystem::path& path,
+                                 const std::string& explicit_name) const;
+  const Format& resolve_for_write(const std::filesystem::path& path,
+                                  const std::string& explicit_name) const;
+
+  const std::vector<Format>& formats() const { return formats_; }
+
+ private:
+  std::vector<Format> formats_;
+};
+
+}  // namespace mr::io

@@ -1,0 +1,77 @@
+#include <mr/io/mesh_io.h>
+#include <mr/io/atomic_file.h>
+#include <mr/core/boundary.h>
+#include <mr/core/errors.h>
+
+#include <system_error>
+
+namespace mr::io {
+namespace {
+
+// Checks what every reader needs before it opens the file.
+void check_readable(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) throw InputError(path.string(), "no such file");
+  if (std::filesystem::is_directory(status)) throw InputError(path.string(), "is a directory, not a mesh file");
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) throw InputError(path.string(), "cannot read the file size: " + ec.message());
+  if (size == 0) throw InputError(path.string(), "the file is empty");
+}
+
+void check_output_path(const std::filesystem::path& path) {
+  if (path.empty()) throw UsageError("empty output path");
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw UsageError(path.string() + " is a directory");
+}
+
+}  // namespace
+
+bool is_volume_format(const Registry& registry, const std::filesystem::path& path,
+                      const std::string& explicit_format) {
+  return registry.resolve_for_read(path, explicit_format).kind == MeshKind::volume;
+}
+
+TetMesh read_volume(const Registry& registry, const std::filesystem::path& path, const ReadOptions& options) {
+  const Format& format = registry.resolve_for_read(path, options.format);
+  if (!format.read_volume)
+    throw InputError(path.string(), "is a surface format (" + format.name + "), not a volume mesh");
+  check_readable(path);
+  TetMesh mesh = format.read_volume(path, options);
+  if (std::string problem = find_tet_mesh_inconsistency(mesh); !problem.empty())
+    throw InputError(path.string(), problem);
+  return mesh;
+}
+
+TriangleSoup read_surface(const Registry& registry, const std::filesystem::path& path,
+                          const ReadOptions& options) {
+  const Format& format = registry.resolve_for_read(path, options.format);
+  if (!format.read_surface) return extract_boundary(read_volume(registry, path, options));
+  check_readable(path);
+  TriangleSoup soup = format.read_surface(path, options);
+  if (std::string problem = find_soup_inconsistency(soup); !problem.empty())
+    throw InputError(path.string(), problem);
+  return soup;
+}
+
+void write_surface(const Registry& registry, const TriangleSoup& soup, const std::filesystem::path& path,
+                   const WriteOptions& options) {
+  const Format& format = registry.resolve_for_write(path, options.format);
+  if (!format.write_surface) throw UsageError("format " + format.name + " holds volume meshes, not surfaces");
+  if (std::string problem = find_soup_inconsistency(soup); !problem.empty())
+    throw RunError("refusing to write an inconsistent mesh to " + path.string() + ": " + problem);
+  check_output_path(path);
+  write_atomically(path, [&](const std::filesystem::path& temp) { format.write_surface(soup, temp, options); });
+}
+
+void write_volume(const Registry& registry, const TetMesh& mesh, const std::filesystem::path& path,
+                  const WriteOptions& options) {
+  const Format& format = registry.resolve_for_write(path, options.format);
+  if (!format.write_volume) throw UsageError("format " + format.name + " holds surfaces, not volume meshes");
+  if (std::string problem = find_tet_mesh_inconsistency(mesh); !problem.empty())
+    throw RunError("refusing to write an inconsistent mesh to " + path.string() + ": " + problem);
+  check_output_path(path);
+  write_atomically(path, [&](const std::filesystem::path& temp) { format.write_volume(mesh, temp, options); });
+}
+
+}  // namespace mr::io

@@ -1,0 +1,32 @@
+#include <mr/io/default_registry.h>
+#include <mr/plugins/openmesh_formats.h>
+#include <mr/plugins/tet_formats.h>
+#ifdef MR_WITH_DRACO
+#include <mr/plugins/draco_formats.h>
+#endif
+#ifdef MR_WITH_GLTF
+#include <mr/plugins/gltf_formats.h>
+#endif
+#ifdef MR_WITH_VDB
+#include <mr/plugins/vdb_formats.h>
+#endif
+
+namespace mr::io {
+
+Registry make_default_registry() {
+  Registry registry;
+  plugins::register_openmesh_formats(registry);
+  plugins::register_tet_formats(registry);
+#ifdef MR_WITH_DRACO
+  plugins::register_draco_formats(registry);
+#endif
+#ifdef MR_WITH_GLTF
+  plugins::register_gltf_formats(registry);
+#endif
+#ifdef MR_WITH_VDB
+  plugins::register_vdb_formats(registry);
+#endif
+  return registry;
+}
+
+}  // namespace mr::io

@@ -1,0 +1,54 @@
+#pragma once
+// Models built in code and small helpers shared by the tests.
+
+#include <mr/core/tet_mesh.h>
+#include <mr/core/triangle_soup.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace mr::test {
+
+/// Axis-aligned cube [lo, hi]^3, 8 vertices, 12 outward triangles.
+TriangleSoup cube_soup(double lo = 0.0, double hi = 1.0);
+
+/// Three triangles sharing one edge (non-manifold), plus a duplicated face, a
+/// zero-area face and an isolated vertex: everything a halfedge import loses.
+TriangleSoup non_manifold_soup();
+
+/// Unit cube split into 6 positively oriented tets (8 vertices), labels 1..6.
+TetMesh cube_tets();
+
+/// A fresh empty directory for one test, removed when the object dies.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& name);
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& file) const { return path_ / file; }
+  /// Names of the files now in the directory, sorted.
+  std::vector<std::string> files() const;
+
+ private:
+  std::filesystem::path path_;
+};
+
+void write_text(const std::filesystem::path& path, const std::string& text);
+void write_bytes(const std::filesystem::path& path, const std::vector<char>& bytes);
+
+/// Runs a tool in-process; returns the exit code and fills out/err.
+struct ToolRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+ToolRun run_format_convert(const std::vector<std::string>& args);
+
+/// Signed volume enclosed by a closed, consistently oriented soup.
+double enclosed_volume(const TriangleSoup& soup);
+double tet_volume(const TetMesh& mesh);
+
+}  // namespace mr::test

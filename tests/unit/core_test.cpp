@@ -1,0 +1,77 @@
+#include "test_support.h"
+
+#include <mr/core/boundary.h>
+#include <mr/core/errors.h>
+#include <mr/core/openmesh_convert.h>
+
+#include <catch2/catch.hpp>
+
+using namespace mr;
+
+TEST_CASE("soup consistency check finds bad indices and non-finite coordinates", "[core]") {
+  TriangleSoup soup = test::cube_soup();
+  CHECK(find_soup_inconsistency(soup).empty());
+  soup.triangles.push_back({0, 1, 8});
+  CHECK_THAT(find_soup_inconsistency(soup), Catch::Contains("refers to vertex 8"));
+  soup = test::cube_soup();
+  soup.positions[3].y() = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THAT(find_soup_inconsistency(soup), Catch::Contains("non-finite"));
+  soup = test::cube_soup();
+  soup.normals.resize(3);
+  CHECK_THAT(find_soup_inconsistency(soup), Catch::Contains("normals"));
+}
+
+TEST_CASE("soup append offsets indices and keeps shared attributes only", "[core]") {
+  TriangleSoup a = test::cube_soup();
+  a.face_regions.assign(a.triangles.size(), 1);
+  TriangleSoup b = test::cube_soup(2, 3);
+  a.append(b);
+  CHECK(a.num_vertices() == 16);
+  CHECK(a.num_triangles() == 24);
+  CHECK(a.triangles[12][0] == b.triangles[0][0] + 8);
+  REQUIRE(a.face_regions.size() == 24);
+  CHECK(a.face_regions[0] == 1);
+  CHECK(a.face_regions[23] == 0);
+  CHECK(find_soup_inconsistency(a).empty());
+}
+
+TEST_CASE("cube soup encloses unit volume with outward faces", "[core]") {
+  CHECK(test::enclosed_volume(test::cube_soup()) == Approx(1.0));
+  CHECK(bounding_box_diagonal(test::cube_soup()) == Approx(std::sqrt(3.0)));
+}
+
+TEST_CASE("boundary of a tet mesh is closed and outward", "[core][boundary]") {
+  const TetMesh mesh = test::cube_tets();
+  CHECK(test::tet_volume(mesh) == Approx(1.0));
+  const TriangleSoup boundary = extract_boundary(mesh);
+  CHECK(boundary.num_triangles() == 12);
+  CHECK(boundary.num_vertices() == 8);
+  CHECK(test::enclosed_volume(boundary) == Approx(1.0));
+
+  const TriangleSoup half = extract_boundary(mesh, [](std::size_t t) { return t < 3; });
+  CHECK(test::enclosed_volume(half) == Approx(0.5));
+
+  const TriangleSoup labelled = extract_boundary(mesh, {}, true);
+  REQUIRE(labelled.face_regions.size() == 12);
+}
+
+TEST_CASE("interfaces between labels are extracted once each", "[core][boundary]") {
+  const TetMesh mesh = test::cube_tets();  // six labels: every inner face is an interface
+  const TriangleSoup interfaces = extract_interfaces(mesh);
+  // 12 outer faces + 6 inner faces (each of the 6 tets shares 2 faces with neighbours).
+  CHECK(interfaces.num_triangles() == 18);
+}
+
+TEST_CASE("halfedge conversion reports the faces it cannot hold", "[core][openmesh]") {
+  const TriangleSoup soup = test::non_manifold_soup();
+  const ToTriMeshResult result = to_trimesh(soup);
+  CHECK(result.mesh.n_vertices() == soup.num_vertices());
+  CHECK(result.mesh.n_faces() + result.rejected_triangles.size() == soup.num_triangles());
+  CHECK_FALSE(result.rejected_triangles.empty());
+
+  const ToTriMeshResult cube = to_trimesh(test::cube_soup());
+  CHECK(cube.rejected_triangles.empty());
+  const TriangleSoup back = to_soup(cube.mesh);
+  CHECK(back.triangles == test::cube_soup().triangles);
+  CHECK(back.positions == test::cube_soup().positions);
+}

@@ -1,0 +1,9 @@
+#include "format_convert.h"
+
+#include <mr/cli/run_tool.h>
+
+#include <iostream>
+
+int main(int argc, char** argv) {
+  return mr::tools::format_convert(mr::cli::arguments(argc, argv), std::cout, std::cerr);
+}
