@@ -1,0 +1,34 @@
+#pragma once
+// Draco encoding and decoding of a triangle soup, shared by the .drc format
+// and by glTF's KHR_draco_mesh_compression.
+
+#include <mr/core/triangle_soup.h>
+#include <mr/io/options.h>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mr::plugins {
+
+/// Draco attribute unique ids of each soup attribute; -1 = absent (on decode:
+/// find the attribute by its semantic type instead).
+struct DracoAttributeIds {
+  int position = -1;
+  int normal = -1;
+  int uv = -1;
+  int color = -1;
+};
+
+struct DracoEncoded {
+  std::vector<char> bytes;
+  DracoAttributeIds ids;
+};
+
+/// Throws mr::RunError if Draco cannot encode the soup.
+DracoEncoded encode_draco(const TriangleSoup& soup, const io::DracoOptions& options);
+
+/// Throws mr::InputError naming `source` on anything that is not a valid Draco triangle mesh.
+TriangleSoup decode_draco(std::string_view bytes, const std::string& source, const DracoAttributeIds& ids = {});
+
+}  // namespace mr::plugins
