@@ -1,0 +1,84 @@
+// I/O throughput: writes and reads a generated 1M-triangle mesh through our
+// formats, and reads the binary STL with OpenMesh's own reader for comparison.
+// Usage: io_bench [WORKDIR] [TRIANGLES]   (prints a Markdown table)
+
+#include <mr/core/openmesh_convert.h>
+#include <mr/io/default_registry.h>
+#include <mr/io/mesh_io.h>
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A closed torus grid with about `triangles` triangles (welded, manifold).
+mr::TriangleSoup torus(std::size_t triangles) {
+  const auto rings = static_cast<std::size_t>(std::sqrt(triangles));
+  const std::size_t sides = triangles / (2 * rings);
+  mr::TriangleSoup soup;
+  for (std::size_t i = 0; i < rings; ++i)
+    for (std::size_t j = 0; j < sides; ++j) {
+      const double u = 2 * M_PI * double(i) / double(rings), v = 2 * M_PI * double(j) / double(sides);
+      const double r = 3 + std::cos(v);
+      soup.positions.emplace_back(r * std::cos(u), r * std::sin(u), std::sin(v));
+    }
+  auto id = [&](std::size_t i, std::size_t j) { return mr::Index((i % rings) * sides + j % sides); };
+  for (std::size_t i = 0; i < rings; ++i)
+    for (std::size_t j = 0; j < sides; ++j) {
+      soup.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      soup.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return soup;
+}
+
+double seconds(const std::function<void()>& work) {
+  const auto start = Clock::now();
+  work();
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void row(const std::string& what, double s, const std::filesystem::path& file, std::size_t faces) {
+  const double mb = double(std::filesystem::file_size(file)) / 1e6;
+  std::printf("| %-34s | %8.3f | %8.1f | %9.1f | %10zu |\n", what.c_str(), s, mb, mb / s, faces);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::filesystem::path dir = argc > 1 ? argv[1] : std::filesystem::temp_directory_path() / "mr_io_bench";
+  const std::size_t n = argc > 2 ? std::stoul(argv[2]) : 1000000;
+  std::filesystem::create_directories(dir);
+  const mr::io::Registry registry = mr::io::make_default_registry();
+  const mr::TriangleSoup soup = torus(n);
+  std::printf("| step | seconds | MB | MB/s | faces |\n|---|---|---|---|---|\n");
+
+  struct Case { std::string name, file; bool draco; };
+  for (const Case& c : {Case{"binary STL", "mesh.stl", false}, Case{"PLY (binary)", "mesh.ply", false},
+                        Case{"OBJ", "mesh.obj", false}, Case{"GLB", "mesh.glb", false},
+                        Case{"Draco GLB", "mesh.draco.glb", true}, Case{"Draco .drc", "mesh.drc", false}}) {
+    if (!registry.by_extension(c.file)) continue;
+    const auto path = dir / c.file;
+    mr::io::WriteOptions options;
+    options.draco.compress_gltf = c.draco;
+    row("write " + c.name, seconds([&] { mr::io::write_surface(registry, soup, path, options); }), path,
+        soup.num_triangles());
+    mr::TriangleSoup back;
+    const double s = seconds([&] { back = mr::io::read_surface(registry, path); });
+    row("read " + c.name + " (ours)", s, path, back.num_triangles());
+  }
+  const auto stl = dir / "mesh.stl";
+  if (std::filesystem::exists(stl)) {
+    mr::TriMesh mesh;
+    const double s = seconds([&] { OpenMesh::IO::read_mesh(mesh, stl.string()); });
+    row("read binary STL (OpenMesh read_mesh)", s, stl, mesh.n_faces());
+  }
+  return 0;
+}
