@@ -14,9 +14,13 @@ namespace {
 std::filesystem::path temporary_sibling(const std::filesystem::path& destination) {
   static std::atomic<unsigned> counter{0};
   const auto tick = std::chrono::steady_clock::now().time_since_epoch().count();
-  std::string name = "." + destination.stem().string() + ".tmp" + std::to_string(::getpid()) + "-" +
-                     std::to_string(counter++) + "-" + std::to_string(tick % 100000) +
-                     destination.extension().string();
+  std::string name(".");
+  name += destination.stem().string();
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string.
+  for (const std::string& piece : {std::string(".tmp"), std::to_string(::getpid()), std::string("-"),
+                                   std::to_string(counter++), std::string("-"), std::to_string(tick % 100000)})
+    name += piece;
+  name += destination.extension().string();
   return destination.parent_path() / name;
 }
 

@@ -1,0 +1,87 @@
+// Sampled one-sided distance with CGAL's AABB tree (one translation unit).
+
+#include <mr/check/distance.h>
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace mr::check {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using CgalTriangle = K::Triangle_3;
+using Primitive = CGAL::AABB_triangle_primitive<K, std::vector<CgalTriangle>::const_iterator>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+
+K::Point_3 to_point(const Vec3d& p) { return {p.x(), p.y(), p.z()}; }
+
+std::vector<Vec3d> sample_points(const TriangleSoup& soup, const DistanceOptions& options) {
+  const double diagonal = bounding_box_diagonal(soup);
+  double total_area = 0;
+  for (const Triangle& t : soup.triangles)
+    total_area += 0.5 * (soup.positions[t[1]] - soup.positions[t[0]]).cross(soup.positions[t[2]] - soup.positions[t[0]]).norm();
+  double density = diagonal > 0 ? options.density / (diagonal * diagonal) : 0;
+  const double fixed = 6.0 * double(soup.triangles.size());
+  if (fixed + density * total_area > double(options.max_samples))
+    density = std::max(0.0, (double(options.max_samples) - fixed) / std::max(total_area, 1e-300));
+
+  std::mt19937_64 rng(12345);  // fixed seed: the same samples every run
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Vec3d> samples;
+  for (const Triangle& t : soup.triangles) {
+    const Vec3d &a = soup.positions[t[0]], &b = soup.positions[t[1]], &c = soup.positions[t[2]];
+    for (const Vec3d& p : {a, b, c, Vec3d((a + b) / 2), Vec3d((b + c) / 2), Vec3d((c + a) / 2)}) samples.push_back(p);
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    const double expected = density * area;
+    auto count = static_cast<std::size_t>(expected);
+    if (unit(rng) < expected - double(count)) ++count;
+    for (std::size_t k = 0; k < count; ++k) {
+      double u = unit(rng), v = unit(rng);
+      if (u + v > 1) {
+        u = 1 - u;
+        v = 1 - v;
+      }
+      samples.push_back(a + u * (b - a) + v * (c - a));
+    }
+  }
+  return samples;
+}
+
+}  // namespace
+
+DistanceReport one_sided_distance(const TriangleSoup& from, const TriangleSoup& to, const DistanceOptions& options) {
+  DistanceReport report;
+  std::vector<CgalTriangle> triangles;
+  for (const Triangle& t : to.triangles) {
+    CgalTriangle tri(to_point(to.positions[t[0]]), to_point(to.positions[t[1]]), to_point(to.positions[t[2]]));
+    if (!tri.is_degenerate()) triangles.push_back(tri);
+  }
+  if (triangles.empty() || from.triangles.empty()) return report;
+  Tree tree(triangles.begin(), triangles.end());
+  tree.accelerate_distance_queries();
+  const std::vector<Vec3d> samples = sample_points(from, options);
+  std::vector<double> distances(samples.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size()), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i)
+      distances[i] = std::sqrt(tree.squared_distance(to_point(samples[i])));
+  });
+  report.samples = samples.size();
+  double sum = 0;
+  for (double d : distances) {
+    report.max = std::max(report.max, d);
+    sum += d;
+  }
+  report.mean = sum / double(samples.size());
+  return report;
+}
+
+}  // namespace mr::check

@@ -1,0 +1,139 @@
+#include "exact.h"
+#include "welded.h"
+
+#include <mr/check/self_intersections.h>
+#include <mr/check/surface_check.h>
+
+#include <algorithm>
+#include <numeric>
+#include <tuple>
+
+namespace mr::check {
+namespace {
+
+class UnionFind {
+ public:
+  explicit UnionFind(std::size_t n) {
+    parent_.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) parent_.push_back(i);
+  }
+  std::size_t find(std::size_t x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void unite(std::size_t a, std::size_t b) { parent_[find(a)] = find(b); }
+
+ private:
+  std::vector<std::size_t> parent_;
+};
+
+bool repeats_index(const Triangle& t) { return t[0] == t[1] || t[1] == t[2] || t[0] == t[2]; }
+
+struct EdgeUse {
+  Index lo, hi;
+  bool forward;  // traversed lo -> hi
+  std::size_t face;
+  int corner_lo, corner_hi;  // local corners of lo and hi in the face
+};
+
+std::vector<EdgeUse> edge_uses(const std::vector<Triangle>& triangles) {
+  std::vector<EdgeUse> uses;
+  uses.reserve(3 * triangles.size());
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    const Triangle& t = triangles[f];
+    if (repeats_index(t)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int a = k, b = (k + 1) % 3;
+      const bool forward = t[a] < t[b];
+      uses.push_back({std::min(t[a], t[b]), std::max(t[a], t[b]), forward, f, forward ? a : b, forward ? b : a});
+    }
+  }
+  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
+    return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
+  });
+  return uses;
+}
+
+void count_edges(const detail::Welded& mesh, SurfaceReport& report) {
+  const std::vector<EdgeUse> uses = edge_uses(mesh.triangles);
+  // Corners (face, local vertex) around a vertex are joined across shared edges;
+  // a vertex whose corners fall into several groups has several fans.
+  UnionFind corners(3 * mesh.triangles.size());
+  for (std::size_t i = 0; i < uses.size();) {
+    std::size_t j = i + 1;
+    while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) ++j;
+    const std::size_t count = j - i;
+    if (count == 1) ++report.boundary_edges;
+    if (count > 2) ++report.nonmanifold_edges;
+    if (count == 2 && uses[i].forward == uses[i + 1].forward) ++report.inconsistent_edges;
+    for (std::size_t k = i + 1; k < j; ++k) {
+      corners.unite(3 * uses[i].face + uses[i].corner_lo, 3 * uses[k].face + uses[k].corner_lo);
+      corners.unite(3 * uses[i].face + uses[i].corner_hi, 3 * uses[k].face + uses[k].corner_hi);
+    }
+    i = j;
+  }
+  std::vector<std::pair<Index, std::size_t>> vertex_fans;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    if (repeats_index(mesh.triangles[f])) continue;
+    for (int k = 0; k < 3; ++k) vertex_fans.emplace_back(mesh.triangles[f][k], corners.find(3 * f + k));
+  }
+  std::sort(vertex_fans.begin(), vertex_fans.end());
+  vertex_fans.erase(std::unique(vertex_fans.begin(), vertex_fans.end()), vertex_fans.end());
+  for (std::size_t i = 0; i < vertex_fans.size();) {
+    std::size_t j = i + 1;
+    while (j < vertex_fans.size() && vertex_fans[j].first == vertex_fans[i].first) ++j;
+    if (j - i > 1) ++report.nonmanifold_vertices;
+    i = j;
+  }
+}
+
+void count_faces(const detail::Welded& mesh, SurfaceReport& report) {
+  std::vector<Triangle> sorted;
+  UnionFind vertices(mesh.positions.size());
+  for (const Triangle& t : mesh.triangles) {
+    Triangle s = t;
+    std::sort(s.begin(), s.end());
+    sorted.push_back(s);
+    vertices.unite(t[0], t[1]);
+    vertices.unite(t[1], t[2]);
+    const Vec3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+    if (repeats_index(t) || detail::exactly_collinear(a, b, c)) ++report.degenerate_faces;
+  }
+  std::sort(sorted.begin(), sorted.end());
+  report.duplicate_faces = sorted.size() - static_cast<std::size_t>(std::unique(sorted.begin(), sorted.end()) - sorted.begin());
+  std::vector<std::size_t> roots;
+  for (const Triangle& t : mesh.triangles) roots.push_back(vertices.find(t[0]));
+  std::sort(roots.begin(), roots.end());
+  report.components = static_cast<std::size_t>(std::unique(roots.begin(), roots.end()) - roots.begin());
+}
+
+double signed_volume(const detail::Welded& mesh) {
+  if (mesh.positions.empty()) return 0;
+  Vec3d lo = mesh.positions[0], hi = lo;
+  for (const Vec3d& p : mesh.positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Vec3d center = 0.5 * (lo + hi);  // a nearby origin keeps the sum accurate
+  double six_volume = 0;
+  for (const Triangle& t : mesh.triangles)
+    six_volume += (mesh.positions[t[0]] - center)
+                      .dot((mesh.positions[t[1]] - center).cross(mesh.positions[t[2]] - center));
+  return six_volume / 6;
+}
+
+}  // namespace
+
+SurfaceReport check_surface(const TriangleSoup& soup, const SurfaceCheckOptions& options) {
+  const detail::Welded welded = detail::weld_identical(soup);
+  SurfaceReport report;
+  report.vertices = welded.positions.size();
+  report.faces = welded.triangles.size();
+  count_edges(welded, report);
+  count_faces(welded, report);
+  report.volume = signed_volume(welded);
+  if (options.self_intersections) report.self_intersecting_pairs = count_self_intersections(soup);
+  return report;
+}
+
+}  // namespace mr::check

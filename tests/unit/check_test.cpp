@@ -1,0 +1,122 @@
+#include "test_support.h"
+
+#include <mr/check/distance.h>
+#include <mr/check/self_intersections.h>
+#include <mr/check/surface_check.h>
+#include <mr/check/tet_check.h>
+
+#include <catch2/catch.hpp>
+
+using namespace mr;
+
+namespace {
+
+TriangleSoup two_triangles(const std::vector<Vec3d>& positions, Triangle a, Triangle b) {
+  TriangleSoup soup;
+  soup.positions = positions;
+  soup.triangles = {a, b};
+  return soup;
+}
+
+}  // namespace
+
+TEST_CASE("a closed cube is watertight", "[check]") {
+  const check::SurfaceReport report = check::check_surface(test::cube_soup());
+  CHECK(report.vertices == 8);
+  CHECK(report.faces == 12);
+  CHECK(report.closed());
+  CHECK(report.manifold());
+  CHECK(report.inconsistent_edges == 0);
+  CHECK(report.self_intersecting_pairs == 0);
+  CHECK(report.components == 1);
+  CHECK(report.volume == Approx(1.0));
+  CHECK(report.watertight());
+}
+
+TEST_CASE("surface defects are counted", "[check]") {
+  TriangleSoup open = test::cube_soup();
+  open.triangles.pop_back();
+  CHECK(check::check_surface(open).boundary_edges == 3);
+
+  TriangleSoup flipped = test::cube_soup();
+  std::swap(flipped.triangles[0][1], flipped.triangles[0][2]);
+  CHECK(check::check_surface(flipped).inconsistent_edges == 3);
+  CHECK_FALSE(check::check_surface(flipped).watertight());
+
+  TriangleSoup inverted = test::cube_soup();
+  for (Triangle& t : inverted.triangles) std::swap(t[1], t[2]);
+  CHECK(check::check_surface(inverted).volume == Approx(-1.0));
+  CHECK_FALSE(check::check_surface(inverted).watertight());
+
+  const check::SurfaceReport soup = check::check_surface(test::non_manifold_soup());
+  CHECK(soup.nonmanifold_edges == 1);
+  CHECK(soup.duplicate_faces == 1);
+  CHECK(soup.degenerate_faces == 2);  // the zero-area face and the repeated index
+
+  // Two cubes touching at one corner: a non-manifold vertex, two components? No:
+  // they share the corner vertex, so one component with a pinched vertex.
+  TriangleSoup pinched = test::cube_soup();
+  pinched.append(test::cube_soup(1, 2));
+  const check::SurfaceReport pinch = check::check_surface(pinched);
+  CHECK(pinch.nonmanifold_vertices == 1);
+  CHECK(pinch.components == 1);
+  CHECK(pinch.self_intersecting_pairs == 0);
+}
+
+TEST_CASE("self-intersections are decided exactly in every contact case", "[check]") {
+  const std::vector<Vec3d> p = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {1, 1, 0}, {1, -1, 0}, {0.5, 0.5, -1}, {0.5, 0.5, 1}};
+  // Sharing edge 0-1, folded onto each other in the plane: intersect.
+  CHECK(check::count_self_intersections(two_triangles(p, {0, 1, 2}, {0, 1, 3})) == 1);
+  // Sharing edge 0-1, on opposite sides: meet only along the edge.
+  CHECK(check::count_self_intersections(two_triangles(p, {0, 1, 2}, {1, 0, 4})) == 0);
+  // Sharing vertex 0, coplanar, the second inside the first's angle: overlap.
+  const std::vector<Vec3d> q = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {1, 0.5, 0}, {0.5, 1, 0}, {-1, -0.5, 0}, {-0.5, -1, 0}};
+  CHECK(check::count_self_intersections(two_triangles(q, {0, 1, 2}, {0, 3, 4})) == 1);
+  // Sharing vertex 0, coplanar, pointing away: only the vertex.
+  CHECK(check::count_self_intersections(two_triangles(q, {0, 1, 2}, {0, 5, 6})) == 0);
+  // Sharing vertex 0, the second piercing the first's plane through its interior.
+  const std::vector<Vec3d> r = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {1, 1, -1}, {1, 1, 1}};
+  CHECK(check::count_self_intersections(two_triangles(r, {0, 1, 2}, {0, 3, 4})) == 1);
+  // Disjoint, and touching at one point (vertex on a face interior).
+  const std::vector<Vec3d> s = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {1, 1, 0}, {1, 1, 1}, {2, 1, 1}, {1, 1, 0.5}};
+  CHECK(check::count_self_intersections(two_triangles(s, {0, 1, 2}, {3, 4, 5})) == 1);
+  CHECK(check::count_self_intersections(two_triangles(s, {0, 1, 2}, {6, 4, 5})) == 0);
+  // A duplicate face.
+  CHECK(check::count_self_intersections(two_triangles(p, {0, 1, 2}, {2, 1, 0})) == 1);
+  // Overlapping cubes.
+  TriangleSoup cubes = test::cube_soup(0, 2);
+  cubes.append(test::cube_soup(1, 3));
+  CHECK(check::count_self_intersections(cubes) > 0);
+}
+
+TEST_CASE("tet checks: exact orientation and quality", "[check]") {
+  const check::TetReport report = check::check_tets(test::cube_tets());
+  CHECK(report.valid());
+  CHECK(report.volume == Approx(1.0));
+  CHECK(report.boundary.watertight());
+  CHECK(report.min_dihedral_deg > 0);
+
+  TetMesh inverted = test::cube_tets();
+  std::swap(inverted.tets[2][0], inverted.tets[2][1]);
+  CHECK(check::check_tets(inverted).inverted_tets == 1);
+
+  TetMesh flat = test::cube_tets();
+  flat.positions.push_back({0.5, 0.5, 0.0});
+  flat.tets.push_back({0, 1, 2, 8});  // four coplanar points
+  CHECK(check::check_tets(flat).degenerate_tets == 1);
+
+  const Vec3d a(1, 0, -1 / std::sqrt(2.0)), b(-1, 0, -1 / std::sqrt(2.0)), c(0, 1, 1 / std::sqrt(2.0)),
+      d(0, -1, 1 / std::sqrt(2.0));
+  const bool positive = (b - a).cross(c - a).dot(d - a) > 0;
+  CHECK(check::amips_energy(a, b, positive ? c : d, positive ? d : c) == Approx(3.0));
+  CHECK(check::min_dihedral_angle_deg(a, b, c, d) == Approx(std::acos(1.0 / 3) * 180 / M_PI));
+}
+
+TEST_CASE("sampled distance between surfaces", "[check]") {
+  const TriangleSoup cube = test::cube_soup();
+  CHECK(check::one_sided_distance(cube, cube).max == Approx(0.0).margin(1e-12));
+  const TriangleSoup bigger = test::cube_soup(-0.1, 1.1);
+  const check::DistanceReport report = check::one_sided_distance(bigger, cube);
+  CHECK(report.max == Approx(std::sqrt(3 * 0.01)).epsilon(1e-9));  // the corners
+  CHECK(report.samples > 1000);
+}
