@@ -1,0 +1,216 @@
+// Why the sampled test is conservative.
+//
+// Lemma (covering radius of a triangle by its own vertices). Let T be a
+// triangle, possibly degenerate, with longest edge L. Every point x of T is
+// within L/sqrt(3) of one of its vertices.
+//   If x is a vertex there is nothing to show. If T is degenerate (collinear
+//   corners), x lies between two corners u, v that are consecutive on the
+//   line; |uv| <= L, so min(|xu|, |xv|) <= L/2 < L/sqrt(3). Otherwise the
+//   three edges are seen from x under angles that sum to 2*pi (x interior),
+//   or one of them is seen under the angle pi (x on that edge); either way
+//   some edge uv is seen under an angle theta >= 2*pi/3. With a = |xu| and
+//   b = |xv|, the law of cosines gives
+//     |uv|^2 = a^2 + b^2 - 2ab cos(theta) >= a^2 + b^2 + ab >= 3 min(a, b)^2,
+//   so min(a, b) <= |uv|/sqrt(3) <= L/sqrt(3).
+// For a segment of length L the same radius is L/2.
+//
+// Theorem. f(x) = distance from x to the input is 1-Lipschitz. Cut the query
+// triangle T into pieces T_i (longest edge L_i) whose vertices are the
+// samples. If every vertex v of every piece has f(v) <= eps - L_i/sqrt(3),
+// then every x of T lies in some T_i, within L_i/sqrt(3) of a vertex v of
+// that piece, and f(x) <= f(v) + |x - v| <= eps. So "inside" is never wrong.
+//
+// The covering radius r(d) = L_i/sqrt(3) <= d/sqrt(3) when pieces have edges
+// <= d: this is the paper's d_err = d/sqrt(3), eps_hat = eps - d_err. For the
+// paper's regular triangular lattice of spacing d it is exactly the
+// circumradius d/sqrt(3) of the lattice's equilateral cells; the Lattice
+// pattern below cuts T into n^2 copies similar to T (n = ceil(L/d)), which
+// is that lattice for an equilateral T and gives the same bound for any T
+// without the paper's extra edge samples. The Adaptive pattern cuts T by
+// longest-edge bisection (longest edges never grow from parent to child)
+// and checks each piece with its own, usually larger, eps - L_i/sqrt(3).
+//
+// Rounding: sample positions and distances are computed in doubles. Every
+// threshold uses limit = eps - margin, where margin (1e-9 of the input's
+// size plus 64 ulps of its largest coordinate) dominates those errors.
+
+#include "sampled_envelope.h"
+
+#include <mr/core/errors.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <limits>
+
+namespace mr::envelope {
+
+namespace {
+
+constexpr double kInvSqrt3 = 0.57735026918962576451;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+void check_options(const EnvelopeOptions& options) {
+  if (!(options.epsilon > 0.0) || !std::isfinite(options.epsilon)) {
+    throw UsageError("envelope: epsilon must be positive and finite");
+  }
+  if (!(options.sampling_step >= 0.0) || !std::isfinite(options.sampling_step)) {
+    throw UsageError("envelope: sampling step must be non-negative and finite (0: epsilon)");
+  }
+  if (options.stage < 1) throw UsageError("envelope: stage must be at least 1");
+}
+
+double rounding_margin(const spatial::AabbTree& tree, double epsilon) {
+  if (tree.empty()) return 1e-9 * epsilon;
+  const spatial::AabbBox box = tree.bounds();
+  const double diagonal = (box.hi - box.lo).norm();
+  const double largest = std::max(box.lo.cwiseAbs().maxCoeff(), box.hi.cwiseAbs().maxCoeff());
+  return 1e-9 * (diagonal + epsilon) + 64.0 * DBL_EPSILON * largest;
+}
+
+bool all_finite(std::initializer_list<const Vec3d*> points) {
+  return std::all_of(points.begin(), points.end(), [](const Vec3d* p) { return p->allFinite(); });
+}
+
+// Index i of the longest edge (v[i], v[(i + 1) % 3]) and its length.
+std::pair<int, double> longest_edge(const std::array<Vec3d, 3>& v) {
+  int longest = 0;
+  double length_sq = -1.0;
+  for (int i = 0; i < 3; ++i) {
+    const double l = (v[(i + 1) % 3] - v[i]).squaredNorm();
+    if (l > length_sq) {
+      length_sq = l;
+      longest = i;
+    }
+  }
+  return {longest, std::sqrt(length_sq)};
+}
+
+double longest_edge_length(const std::array<Vec3d, 3>& v) { return longest_edge(v).second; }
+
+}  // namespace
+
+SampledEnvelope::SampledEnvelope(const TriangleSoup& input, const EnvelopeOptions& options) {
+  check_options(options);
+  tree_ = spatial::AabbTree(input);
+  epsilon_ = options.epsilon;
+  const double d = options.sampling_step > 0.0 ? options.sampling_step : options.epsilon;
+  step_ = d / options.stage;
+  limit_ = epsilon_ - rounding_margin(tree_, epsilon_);
+  pattern_ = options.pattern;
+}
+
+double SampledEnvelope::sample(const Vec3d& p, double accept) const {
+  const double accept_sq = accept > 0.0 ? accept * accept : -1.0;
+  const double d_sq = tree_.squared_distance_bounded(p, accept_sq, limit_ * limit_);
+  return d_sq <= limit_ * limit_ ? d_sq : kInfinity;
+}
+
+bool SampledEnvelope::accepts(double squared_distance, double covering_radius) const {
+  const double threshold = limit_ - covering_radius;
+  return threshold >= 0.0 && squared_distance <= threshold * threshold;
+}
+
+bool SampledEnvelope::is_inside(const Vec3d& p) const {
+  return p.allFinite() && sample(p, limit_) != kInfinity;
+}
+
+bool SampledEnvelope::is_inside(const Vec3d& a, const Vec3d& b) const {
+  if (!all_finite({&a, &b})) return false;
+  if (pattern_ == SamplingPattern::Lattice) return lattice_segment(a, b);
+  const double accept = limit_ - 0.5 * (b - a).norm();
+  const double da = sample(a, accept);
+  if (da == kInfinity) return false;
+  const double db = sample(b, accept);
+  if (db == kInfinity) return false;
+  return adaptive_segment(a, b, da, db);
+}
+
+bool SampledEnvelope::is_inside(const Vec3d& a, const Vec3d& b, const Vec3d& c) const {
+  if (!all_finite({&a, &b, &c})) return false;
+  if (pattern_ == SamplingPattern::Lattice) return lattice_triangle(a, b, c);
+  const std::array<Vec3d, 3> v{a, b, c};
+  const double accept = limit_ - longest_edge_length(v) * kInvSqrt3;
+  std::array<double, 3> d{};
+  for (int i = 0; i < 3; ++i) {
+    d[i] = sample(v[i], accept);
+    if (d[i] == kInfinity) return false;
+  }
+  return adaptive_triangle(v, d);
+}
+
+// da, db: squared-distance bounds of the ends (see sample()).
+bool SampledEnvelope::adaptive_segment(const Vec3d& a, const Vec3d& b, double da, double db) const {
+  const double length = (b - a).norm();
+  if (accepts(std::max(da, db), 0.5 * length)) return true;
+  if (length <= step_) return false;
+  const Vec3d m = 0.5 * (a + b);
+  const double dm = sample(m, limit_ - 0.25 * length);
+  if (dm == kInfinity) return false;
+  return adaptive_segment(a, m, da, dm) && adaptive_segment(m, b, dm, db);
+}
+
+// Splits the longest edge at its midpoint m. The midpoint is sampled with
+// the smaller acceptance radius of the two halves, so its early-exit bound
+// is good enough for both halves and for all their descendants (whose
+// longest edges, hence radii eps - L/sqrt(3), only grow).
+bool SampledEnvelope::adaptive_triangle(const std::array<Vec3d, 3>& v,
+                                        const std::array<double, 3>& d) const {
+  const auto [i, length] = longest_edge(v);
+  if (accepts(std::max({d[0], d[1], d[2]}), length * kInvSqrt3)) return true;
+  if (length <= step_) return false;
+  const int j = (i + 1) % 3;
+  const int k = (i + 2) % 3;
+  const std::array<Vec3d, 3> first{v[i], 0.5 * (v[i] + v[j]), v[k]};
+  const std::array<Vec3d, 3> second{first[1], v[j], v[k]};
+  const double child_length = std::max(longest_edge_length(first), longest_edge_length(second));
+  const double dm = sample(first[1], limit_ - child_length * kInvSqrt3);
+  if (dm == kInfinity) return false;
+  return adaptive_triangle(first, {d[i], dm, d[k]}) && adaptive_triangle(second, {dm, d[j], d[k]});
+}
+
+bool SampledEnvelope::lattice_segment(const Vec3d& a, const Vec3d& b) const {
+  const double length = (b - a).norm();
+  const double n = std::max(1.0, std::ceil(length / step_));
+  const double threshold = limit_ - 0.5 * length / n;
+  if (threshold < 0.0) return false;
+  const double threshold_sq = threshold * threshold;
+  for (double i = 0; i <= n; ++i) {
+    const Vec3d p = a + (i / n) * (b - a);
+    if (tree_.squared_distance_bounded(p, threshold_sq, threshold_sq) > threshold_sq) return false;
+  }
+  return true;
+}
+
+// Lattice vertices a + (i/n)(b - a) + (j/n)(c - a), i + j <= n: the vertices
+// of the n^2 copies of T scaled by 1/n.
+bool SampledEnvelope::lattice_triangle(const Vec3d& a, const Vec3d& b, const Vec3d& c) const {
+  const double length = longest_edge_length({a, b, c});
+  const double n = std::max(1.0, std::ceil(length / step_));
+  const double threshold = limit_ - length / n * kInvSqrt3;
+  if (threshold < 0.0) return false;
+  const double threshold_sq = threshold * threshold;
+  const auto inside = [&](const Vec3d& p) {
+    return tree_.squared_distance_bounded(p, threshold_sq, threshold_sq) <= threshold_sq;
+  };
+  // The whole triangle as one piece (n = 1) first: small triangles close to
+  // the input need no lattice at all.
+  const double whole = limit_ - length * kInvSqrt3;
+  double worst_corner_sq = 0.0;
+  for (const Vec3d* corner : {&a, &b, &c}) {
+    const double d_sq = sample(*corner, whole);
+    if (d_sq > threshold_sq) return false;
+    worst_corner_sq = std::max(worst_corner_sq, d_sq);
+  }
+  if (accepts(worst_corner_sq, length * kInvSqrt3)) return true;
+  const Vec3d ab = b - a;
+  const Vec3d ac = c - a;
+  for (double i = 0; i <= n; ++i) {
+    for (double j = 0; i + j <= n; ++j) {
+      if (!inside(a + (i / n) * ab + (j / n) * ac)) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace mr::envelope

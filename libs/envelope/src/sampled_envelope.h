@@ -1,0 +1,37 @@
+#pragma once
+// The sampled envelope test of the paper (section 3.4), made provably
+// conservative. See sampled_envelope.cpp for the covering-radius argument.
+
+#include <mr/envelope/envelope.h>
+#include <mr/spatial/aabb_tree.h>
+
+namespace mr::envelope {
+
+class SampledEnvelope final : public Envelope {
+ public:
+  SampledEnvelope(const TriangleSoup& input, const EnvelopeOptions& options);
+
+  bool is_inside(const Vec3d& p) const override;
+  bool is_inside(const Vec3d& a, const Vec3d& b) const override;
+  bool is_inside(const Vec3d& a, const Vec3d& b, const Vec3d& c) const override;
+  double epsilon() const override { return epsilon_; }
+
+ private:
+  // Upper bound of the squared distance from p to the input, exact when it
+  // lies in (accept^2, limit^2], infinity beyond limit (see the tree).
+  double sample(const Vec3d& p, double accept) const;
+  bool accepts(double squared_distance, double covering_radius) const;
+
+  bool adaptive_segment(const Vec3d& a, const Vec3d& b, double da, double db) const;
+  bool adaptive_triangle(const std::array<Vec3d, 3>& v, const std::array<double, 3>& d) const;
+  bool lattice_segment(const Vec3d& a, const Vec3d& b) const;
+  bool lattice_triangle(const Vec3d& a, const Vec3d& b, const Vec3d& c) const;
+
+  spatial::AabbTree tree_;
+  double epsilon_ = 0.0;
+  double step_ = 0.0;   // d_k = d / k
+  double limit_ = 0.0;  // epsilon minus the rounding margin
+  SamplingPattern pattern_ = SamplingPattern::Lattice;
+};
+
+}  // namespace mr::envelope

@@ -1,0 +1,83 @@
+#pragma once
+// Bounding volume hierarchy (axis-aligned boxes) over a triangle soup, for
+// closest-point and "anything within r" queries. The tree copies the
+// triangles it needs, so the soup may go away after construction. All
+// queries are const and keep no caches: any number of threads may query one
+// tree at once.
+
+#include <mr/core/triangle_soup.h>
+#include <mr/core/types.h>
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace mr::spatial {
+
+inline constexpr std::uint32_t kNoTriangle = std::numeric_limits<std::uint32_t>::max();
+
+struct ClosestHit {
+  std::uint32_t triangle = kNoTriangle;  ///< index into the soup's triangles
+  Vec3d point = Vec3d::Zero();
+  double squared_distance = std::numeric_limits<double>::infinity();
+  bool found() const { return triangle != kNoTriangle; }
+};
+
+struct AabbBox {
+  Vec3d lo = Vec3d::Constant(std::numeric_limits<double>::infinity());
+  Vec3d hi = Vec3d::Constant(-std::numeric_limits<double>::infinity());
+};
+
+class AabbTree {
+ public:
+  /// An empty tree: every query finds nothing.
+  AabbTree() = default;
+  /// Builds over every triangle of `soup`, degenerate ones included; the
+  /// build is parallel (TBB) and deterministic. Throws mr::UsageError on an
+  /// index out of range or a non-finite coordinate of a used vertex.
+  explicit AabbTree(const TriangleSoup& soup);
+
+  std::size_t num_triangles() const { return triangle_ids_.size(); }
+  bool empty() const { return triangle_ids_.empty(); }
+  /// Box of all triangles (empty box for an empty tree).
+  AabbBox bounds() const;
+
+  /// Nearest triangle, its closest point and the squared distance. Ties go to
+  /// whichever triangle the traversal meets first (deterministic).
+  ClosestHit closest(const Vec3d& p) const;
+  /// As closest(), but triangles farther than max_distance are ignored
+  /// (returns a hit with found() == false when there is none).
+  ClosestHit closest_within(const Vec3d& p, double max_distance) const;
+  double squared_distance(const Vec3d& p) const { return closest(p).squared_distance; }
+
+  /// True when some triangle has a point at distance <= r from p. Stops at
+  /// the first such triangle.
+  bool any_within(const Vec3d& p, double r) const;
+
+  /// Squared distance from p, computed only as far as needed: returns s with
+  ///  - s <= accept_sq and s >= true squared distance, if the true squared
+  ///    distance is <= accept_sq (stops at the first triangle closer than that);
+  ///  - the exact squared distance, if it lies in (accept_sq, cap_sq];
+  ///  - +infinity, if it exceeds cap_sq.
+  /// So s is always an upper bound of the true value, and exact when it matters.
+  double squared_distance_bounded(const Vec3d& p, double accept_sq, double cap_sq) const;
+
+  struct Node {
+    double lo[3];
+    double hi[3];
+    std::uint32_t first_or_right;  ///< leaf: first triangle slot; inner: right child
+    std::uint32_t count;           ///< leaf: number of triangles; inner: 0 (left child = this + 1)
+  };
+
+ private:
+  template <class Visitor>
+  void traverse(const Vec3d& p, double& bound_sq, Visitor&& visit) const;
+
+  std::vector<Node> nodes_;           // depth-first order, root first
+  std::vector<Vec3d> corners_;        // 3 per triangle slot, in leaf order
+  std::vector<std::uint32_t> triangle_ids_;  // soup index of each slot
+
+  friend class AabbBuilder;
+};
+
+}  // namespace mr::spatial

@@ -1,0 +1,132 @@
+// Queries of the AABB tree: one depth-first traversal, nearer child first,
+// pruned by a squared-distance bound that the visitor may shrink.
+
+#include <mr/spatial/aabb_tree.h>
+#include <mr/spatial/triangle_distance.h>
+
+#include <algorithm>
+
+namespace mr::spatial {
+
+namespace {
+
+double box_squared_distance(const AabbTree::Node& node, const Vec3d& p) {
+  double sum = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double below = node.lo[k] - p[k];
+    const double above = p[k] - node.hi[k];
+    const double gap = std::max({below, above, 0.0});
+    sum += gap * gap;
+  }
+  return sum;
+}
+
+// A median-split tree over fewer than 2^32 triangles is at most 32 levels deep.
+constexpr int kMaxStack = 64;
+
+}  // namespace
+
+AabbBox AabbTree::bounds() const {
+  AabbBox box;
+  if (nodes_.empty()) return box;
+  box.lo = Vec3d(nodes_[0].lo[0], nodes_[0].lo[1], nodes_[0].lo[2]);
+  box.hi = Vec3d(nodes_[0].hi[0], nodes_[0].hi[1], nodes_[0].hi[2]);
+  return box;
+}
+
+// Visits the triangle slots of every leaf whose box is within sqrt(bound_sq)
+// of p; visit(slot) returns true to stop the whole traversal.
+template <class Visitor>
+void AabbTree::traverse(const Vec3d& p, double& bound_sq, Visitor&& visit) const {
+  if (nodes_.empty() || box_squared_distance(nodes_[0], p) > bound_sq) return;
+  struct Pending {
+    std::uint32_t node;
+    double squared_distance;
+  };
+  Pending stack[kMaxStack];
+  int top = 0;
+  std::uint32_t node = 0;
+  for (;;) {
+    const Node& current = nodes_[node];
+    bool descend = false;
+    if (current.count != 0) {
+      const std::uint32_t end = current.first_or_right + current.count;
+      for (std::uint32_t slot = current.first_or_right; slot < end; ++slot) {
+        if (visit(slot)) return;
+      }
+    } else {
+      std::uint32_t near = node + 1;
+      std::uint32_t far = current.first_or_right;
+      double near_sq = box_squared_distance(nodes_[near], p);
+      double far_sq = box_squared_distance(nodes_[far], p);
+      if (far_sq < near_sq) {
+        std::swap(near, far);
+        std::swap(near_sq, far_sq);
+      }
+      if (near_sq <= bound_sq) {
+        if (far_sq <= bound_sq) stack[top++] = {far, far_sq};
+        node = near;
+        descend = true;
+      }
+    }
+    if (descend) continue;
+    for (;;) {
+      if (top == 0) return;
+      const Pending next = stack[--top];
+      if (next.squared_distance <= bound_sq) {
+        node = next.node;
+        break;
+      }
+    }
+  }
+}
+
+ClosestHit AabbTree::closest(const Vec3d& p) const {
+  return closest_within(p, std::numeric_limits<double>::infinity());
+}
+
+ClosestHit AabbTree::closest_within(const Vec3d& p, double max_distance) const {
+  ClosestHit hit;
+  if (!(max_distance >= 0.0)) return hit;
+  double bound_sq = max_distance * max_distance;
+  std::uint32_t best_slot = kNoTriangle;
+  traverse(p, bound_sq, [&](std::uint32_t slot) {
+    const Vec3d* c = &corners_[3 * std::size_t{slot}];
+    const PointOnPrimitive q = closest_on_triangle(p, c[0], c[1], c[2]);
+    if (q.squared_distance <= bound_sq &&
+        (best_slot == kNoTriangle || q.squared_distance < hit.squared_distance)) {
+      best_slot = slot;
+      hit.point = q.point;
+      hit.squared_distance = q.squared_distance;
+      bound_sq = q.squared_distance;
+    }
+    return false;
+  });
+  if (best_slot != kNoTriangle) hit.triangle = triangle_ids_[best_slot];
+  return hit;
+}
+
+double AabbTree::squared_distance_bounded(const Vec3d& p, double accept_sq, double cap_sq) const {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  if (!(cap_sq >= 0.0)) return kInfinity;
+  double bound_sq = cap_sq;
+  bool found = false;
+  traverse(p, bound_sq, [&](std::uint32_t slot) {
+    const Vec3d* c = &corners_[3 * std::size_t{slot}];
+    const double d_sq = closest_on_triangle(p, c[0], c[1], c[2]).squared_distance;
+    if (d_sq > bound_sq) return false;
+    bound_sq = d_sq;
+    found = true;
+    return d_sq <= accept_sq;
+  });
+  return found ? bound_sq : kInfinity;
+}
+
+bool AabbTree::any_within(const Vec3d& p, double r) const {
+  if (!(r >= 0.0)) return false;
+  const double r_sq = r * r;
+  const double d_sq = squared_distance_bounded(p, r_sq, r_sq);
+  return d_sq <= r_sq && d_sq != std::numeric_limits<double>::infinity();
+}
+
+}  // namespace mr::spatial

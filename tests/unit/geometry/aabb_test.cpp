@@ -1,0 +1,209 @@
+#include <mr/core/errors.h>
+#include <mr/spatial/aabb_tree.h>
+#include <mr/spatial/triangle_distance.h>
+
+#include <catch2/catch.hpp>
+
+#include "test_support.h"
+
+#include <cmath>
+#include <random>
+#include <thread>
+#include <vector>
+
+namespace {
+
+using mr::Vec3d;
+using mr::spatial::AabbTree;
+using mr::spatial::closest_on_triangle;
+
+Vec3d random_point(std::mt19937_64& rng, double lo, double hi) {
+  std::uniform_real_distribution<double> u(lo, hi);
+  return {u(rng), u(rng), u(rng)};
+}
+
+// Small random triangles scattered in [0,1]^3, some degenerate.
+mr::TriangleSoup random_soup(std::mt19937_64& rng, int count) {
+  mr::TriangleSoup soup;
+  std::uniform_real_distribution<double> size(0.001, 0.1);
+  for (int t = 0; t < count; ++t) {
+    const Vec3d base = random_point(rng, 0.0, 1.0);
+    const double s = size(rng);
+    const auto first = static_cast<mr::Index>(soup.positions.size());
+    soup.positions.push_back(base);
+    if (t % 17 == 0) {  // a point
+      soup.positions.push_back(base);
+      soup.positions.push_back(base);
+    } else if (t % 13 == 0) {  // a segment, with the middle corner between the ends
+      const Vec3d dir = random_point(rng, -s, s);
+      soup.positions.push_back(base + dir);
+      soup.positions.push_back(base + 0.3 * dir);
+    } else {
+      soup.positions.push_back(base + random_point(rng, -s, s));
+      soup.positions.push_back(base + random_point(rng, -s, s));
+    }
+    soup.triangles.push_back({first, first + 1, first + 2});
+  }
+  return soup;
+}
+
+struct BruteHit {
+  double squared_distance = INFINITY;
+  std::vector<std::uint32_t> nearest;  // every triangle at that distance
+};
+
+BruteHit brute_force(const mr::TriangleSoup& soup, const Vec3d& p) {
+  BruteHit best;
+  for (std::uint32_t t = 0; t < soup.triangles.size(); ++t) {
+    const auto& tri = soup.triangles[t];
+    const double d = closest_on_triangle(p, soup.positions[tri[0]], soup.positions[tri[1]],
+                                         soup.positions[tri[2]])
+                         .squared_distance;
+    if (d < best.squared_distance) best = {d, {t}};
+    else if (d == best.squared_distance) best.nearest.push_back(t);
+  }
+  return best;
+}
+
+bool close_relative(double a, double b, double tolerance = 1e-12) {
+  return std::abs(a - b) <= tolerance * std::max({std::abs(a), std::abs(b), 1e-300});
+}
+
+}  // namespace
+
+TEST_CASE("closest point on a triangle: regions and degenerate triangles", "[aabb]") {
+  const Vec3d a(0, 0, 0), b(2, 0, 0), c(0, 2, 0);
+  CHECK(closest_on_triangle({0.5, 0.5, 3}, a, b, c).squared_distance == Approx(9.0));
+  CHECK(closest_on_triangle({-1, -1, 0}, a, b, c).point.isApprox(a));
+  CHECK(closest_on_triangle({3, -1, 0}, a, b, c).point.isApprox(b));
+  CHECK(closest_on_triangle({1, -2, 1}, a, b, c).squared_distance == Approx(5.0));
+  CHECK(closest_on_triangle({2, 2, 0}, a, b, c).squared_distance == Approx(2.0));
+  // A segment (collinear corners, middle one listed last) and a point.
+  const Vec3d s0(0, 0, 0), s1(4, 0, 0), s2(1, 0, 0);
+  CHECK(closest_on_triangle({2, 3, 0}, s0, s1, s2).squared_distance == Approx(9.0));
+  CHECK(closest_on_triangle({6, 0, 0}, s0, s1, s2).squared_distance == Approx(4.0));
+  CHECK(closest_on_triangle({1, 1, 1}, a, a, a).squared_distance == Approx(3.0));
+}
+
+TEST_CASE("AABB tree agrees with brute force on random soups", "[aabb]") {
+  std::mt19937_64 rng(42);
+  for (const int count : {1, 2, 5, 100, 3000}) {
+    const mr::TriangleSoup soup = random_soup(rng, count);
+    const AabbTree tree(soup);
+    REQUIRE(tree.num_triangles() == soup.triangles.size());
+    for (int q = 0; q < 400; ++q) {
+      const Vec3d p = random_point(rng, q % 4 == 0 ? -3.0 : -0.1, q % 4 == 0 ? 4.0 : 1.1);
+      const BruteHit expected = brute_force(soup, p);
+      const mr::spatial::ClosestHit hit = tree.closest(p);
+      REQUIRE(hit.found());
+      REQUIRE(close_relative(hit.squared_distance, expected.squared_distance));
+      CHECK(std::find(expected.nearest.begin(), expected.nearest.end(), hit.triangle) !=
+            expected.nearest.end());
+      // The reported point is on the reported triangle and at the reported distance.
+      const auto& tri = soup.triangles[hit.triangle];
+      CHECK(closest_on_triangle(hit.point, soup.positions[tri[0]], soup.positions[tri[1]],
+                                soup.positions[tri[2]])
+                .squared_distance <= 1e-20);
+      CHECK(close_relative((hit.point - p).squaredNorm(), hit.squared_distance, 1e-9));
+
+      const double r = std::sqrt(expected.squared_distance);
+      CHECK(tree.any_within(p, r * (1 + 1e-9)));
+      CHECK_FALSE(tree.any_within(p, r * (1 - 1e-9)));
+      CHECK_FALSE(tree.closest_within(p, r * (1 - 1e-9)).found());
+      CHECK(close_relative(tree.closest_within(p, r * 1.5).squared_distance, expected.squared_distance));
+      const double bounded = tree.squared_distance_bounded(p, 0.25 * r * r, 4 * r * r);
+      CHECK(close_relative(bounded, expected.squared_distance));
+      const double early = tree.squared_distance_bounded(p, 4 * r * r, 4 * r * r);
+      CHECK(early >= expected.squared_distance * (1 - 1e-12));
+      CHECK(early <= 4 * r * r);
+    }
+  }
+}
+
+TEST_CASE("AABB tree: queries on the surface and far away", "[aabb]") {
+  const mr::TriangleSoup cube = mr::test::cube_soup();
+  const AabbTree tree(cube);
+  CHECK(tree.closest({0.5, 0.5, 1.0}).squared_distance == 0.0);
+  CHECK(tree.closest({0.3, 0.0, 0.7}).squared_distance <= 1e-30);
+  CHECK(tree.any_within({1.0, 1.0, 1.0}, 0.0));
+  CHECK(tree.closest({0.5, 0.5, 0.5}).squared_distance == Approx(0.25));
+  const mr::spatial::ClosestHit far = tree.closest({1e6, 0.5, 0.5});
+  CHECK(far.squared_distance == Approx((1e6 - 1) * (1e6 - 1)));
+  CHECK(far.point.isApprox(Vec3d(1, 0.5, 0.5)));
+  CHECK(tree.any_within({1e6, 0.5, 0.5}, 1e6));
+  CHECK_FALSE(tree.any_within({1e6, 0.5, 0.5}, 1e5));
+  CHECK_FALSE(tree.any_within({0.5, 0.5, 0.5}, -1.0));
+  const mr::spatial::AabbBox box = tree.bounds();
+  CHECK(box.lo.isApprox(Vec3d(0, 0, 0)));
+  CHECK(box.hi.isApprox(Vec3d(1, 1, 1)));
+}
+
+TEST_CASE("AABB tree: empty soup, degenerate-only soup and bad input", "[aabb]") {
+  const AabbTree empty{mr::TriangleSoup{}};
+  CHECK(empty.empty());
+  CHECK_FALSE(empty.closest({0, 0, 0}).found());
+  CHECK_FALSE(empty.any_within({0, 0, 0}, 1e300));
+
+  mr::TriangleSoup points;
+  points.positions = {{1, 1, 1}, {3, 1, 1}};
+  points.triangles = {{0, 0, 0}, {1, 1, 1}, {0, 1, 1}};
+  const AabbTree tree(points);
+  CHECK(tree.closest({1, 1, 0}).squared_distance == Approx(1.0));
+  CHECK(tree.closest({2, 5, 1}).squared_distance == Approx(16.0));
+  CHECK(tree.closest({2, 5, 1}).triangle == 2u);
+
+  mr::TriangleSoup bad = mr::test::cube_soup();
+  bad.triangles[3][1] = 100;
+  CHECK_THROWS_AS(AabbTree(bad), mr::UsageError);
+  mr::TriangleSoup nan_soup = mr::test::cube_soup();
+  nan_soup.positions[2].x() = NAN;
+  CHECK_THROWS_AS(AabbTree(nan_soup), mr::UsageError);
+}
+
+TEST_CASE("AABB tree: concurrent queries give the same answers", "[aabb]") {
+  std::mt19937_64 rng(7);
+  const mr::TriangleSoup soup = random_soup(rng, 20000);
+  const AabbTree tree(soup);
+  std::vector<Vec3d> queries;
+  for (int q = 0; q < 4000; ++q) queries.push_back(random_point(rng, -0.2, 1.2));
+  std::vector<mr::spatial::ClosestHit> serial;
+  for (const Vec3d& p : queries) serial.push_back(tree.closest(p));
+
+  constexpr int kThreads = 6;
+  std::vector<std::vector<mr::spatial::ClosestHit>> results(
+      kThreads, std::vector<mr::spatial::ClosestHit>(queries.size()));
+  std::vector<std::vector<char>> within(kThreads, std::vector<char>(queries.size()));
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t) {
+    threads.emplace_back([&, t] {
+      for (std::size_t i = 0; i < queries.size(); ++i) {
+        const std::size_t q = (i + 977 * t) % queries.size();  // a different order each
+        results[t][q] = tree.closest(queries[q]);
+        within[t][q] = tree.any_within(queries[q], 0.01) ? 1 : 0;
+      }
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  for (int t = 0; t < kThreads; ++t) {
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      REQUIRE(results[t][i].triangle == serial[i].triangle);
+      REQUIRE(results[t][i].squared_distance == serial[i].squared_distance);
+      REQUIRE(results[t][i].point == serial[i].point);
+      REQUIRE((within[t][i] == 1) == (serial[i].squared_distance <= 0.01 * 0.01));
+    }
+  }
+}
+
+TEST_CASE("AABB tree: build is deterministic", "[aabb]") {
+  std::mt19937_64 rng(3);
+  const mr::TriangleSoup soup = random_soup(rng, 50000);
+  const AabbTree first(soup);
+  const AabbTree second(soup);
+  for (int q = 0; q < 500; ++q) {
+    const Vec3d p = random_point(rng, 0.0, 1.0);
+    const auto a = first.closest(p);
+    const auto b = second.closest(p);
+    REQUIRE(a.triangle == b.triangle);
+    REQUIRE(a.squared_distance == b.squared_distance);
+  }
+}
