@@ -1,7 +1,26 @@
 #include <mr/plugins/gltf_formats.h>
 
+#include "gltf_reader.h"
+#include "gltf_writer.h"
+
 namespace mr::plugins {
 
-void register_gltf_formats(io::Registry&) {}  // formats arrive with the plugin's readers and writers
+void register_gltf_formats(io::Registry& registry) {
+  const auto add = [&](const char* name, const char* extension, const char* description, bool glb) {
+    io::Format format;
+    format.name = name;
+    format.extensions = {extension};
+    format.kind = io::MeshKind::surface;
+    format.description = description;
+    format.read_surface = [glb](const std::filesystem::path& path, const io::ReadOptions&) {
+      return gltf::read_gltf(path, glb);
+    };
+    format.write_surface = [glb](const TriangleSoup& soup, const std::filesystem::path& path,
+                                 const io::WriteOptions& options) { gltf::write_gltf(soup, path, options, glb); };
+    registry.add(std::move(format));
+  };
+  add("gltf", ".gltf", "glTF 2.0 JSON (buffer embedded as base64; reads external .bin too; --draco)", false);
+  add("glb", ".glb", "binary glTF 2.0 (all triangle primitives, node transforms applied; --draco)", true);
+}
 
 }  // namespace mr::plugins

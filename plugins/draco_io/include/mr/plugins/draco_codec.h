@@ -5,6 +5,7 @@
 #include <mr/core/triangle_soup.h>
 #include <mr/io/options.h>
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,6 +24,11 @@ struct DracoAttributeIds {
 struct DracoEncoded {
   std::vector<char> bytes;
   DracoAttributeIds ids;
+  /// What a decoder gets back: its point (vertex) count, the glTF accessor
+  /// count (it can differ from the soup's: the edgebreaker drops isolated
+  /// vertices and splits non-manifold ones), and the face count.
+  std::size_t num_points = 0;
+  std::size_t num_faces = 0;
 };
 
 /// Throws mr::RunError if Draco cannot encode the soup.

@@ -1,0 +1,23 @@
+#pragma once
+// Reading a .gltf or .glb file as one triangle soup.
+//
+// Every triangle primitive (TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN) of every
+// mesh instance of the default scene is taken, in world coordinates; POINTS
+// and LINES primitives are skipped. Attributes: POSITION, NORMAL, TEXCOORD_0
+// and COLOR_0. A NORMAL or TEXCOORD_0 that some primitive lacks is dropped
+// from the whole soup (a soup carries an attribute for all vertices or none);
+// a missing COLOR_0 is filled with opaque white, the glTF default. Each
+// primitive's material index becomes the faces' region, material names the
+// region names; primitives without a material get an extra region "default".
+
+#include <mr/core/triangle_soup.h>
+
+#include <filesystem>
+
+namespace mr::plugins::gltf {
+
+/// `require_glb`: the file is read as GLB (it must carry the GLB magic).
+/// Throws InputError naming `path` on anything that cannot be read.
+TriangleSoup read_gltf(const std::filesystem::path& path, bool require_glb);
+
+}  // namespace mr::plugins::gltf

@@ -1,0 +1,108 @@
+// Hostile input: random bytes and damaged copies of valid encodings must
+// decode to a consistent soup or throw InputError naming the source.
+
+#include "draco_test_support.h"
+
+#include <mr/core/errors.h>
+#include <mr/io/file_bytes.h>
+#include <mr/io/mesh_io.h>
+#include <mr/plugins/draco_codec.h>
+#include <mr/plugins/draco_formats.h>
+
+#include <catch2/catch.hpp>
+
+#include <random>
+
+using namespace mr;
+using namespace mr::draco_test;
+
+namespace {
+
+/// 0 = decoded to a consistent soup, 1 = InputError; anything else fails the test.
+int decode_outcome(const std::vector<char>& bytes) {
+  try {
+    const TriangleSoup soup = plugins::decode_draco(std::string_view(bytes.data(), bytes.size()), "fuzz.drc");
+    const std::string problem = find_soup_inconsistency(soup);
+    INFO(problem);
+    CHECK(problem.empty());
+    return 0;
+  } catch (const InputError& error) {
+    CHECK(error.path() == "fuzz.drc");
+    return 1;
+  }
+}
+
+std::vector<char> random_bytes(std::mt19937& rng, bool draco_header) {
+  std::vector<char> bytes;
+  if (draco_header) {
+    // "DRACO", version 2.2, triangular mesh, sequential or edgebreaker, flags.
+    bytes = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, static_cast<char>(rng() % 2), 0, static_cast<char>(rng() % 2 ? 0x80 : 0)};
+  }
+  const std::size_t length = rng() % 300;
+  for (std::size_t i = 0; i < length; ++i) bytes.push_back(static_cast<char>(rng()));
+  return bytes;
+}
+
+std::vector<char> damaged(const std::vector<char>& valid, std::mt19937& rng) {
+  std::vector<char> bytes = valid;
+  const unsigned kind = rng() % 3;
+  if (kind != 1) bytes.resize(rng() % bytes.size());  // truncate
+  if (kind != 0 && !bytes.empty())
+    for (unsigned flips = 1 + rng() % 8; flips > 0; --flips) bytes[rng() % bytes.size()] ^= static_cast<char>(1u << (rng() % 8));
+  return bytes;
+}
+
+TriangleSoup fuzz_model() {
+  TriangleSoup soup = cube_with_attributes();
+  soup.append(cube_with_attributes());  // a second cube on top of the first: duplicate faces
+  TriangleSoup grid = make_grid(6, 5, 0.3);
+  grid.normals.assign(grid.num_vertices(), Vec3f(0, 0, 1));
+  grid.uvs.assign(grid.num_vertices(), Vec2f(0.25f, 0.5f));
+  grid.colors.assign(grid.num_vertices(), Vec4f(1, 0, 0, 1));
+  soup.append(grid);
+  soup.face_regions.resize(soup.num_triangles());
+  for (std::size_t f = 0; f < soup.num_triangles(); ++f) soup.face_regions[f] = static_cast<std::int32_t>(f % 3);
+  return soup;
+}
+
+}  // namespace
+
+TEST_CASE("draco decoder survives random bytes", "[draco][fuzz]") {
+  std::mt19937 rng(20240601);
+  int rejected = 0;
+  for (int i = 0; i < 200; ++i) rejected += decode_outcome(random_bytes(rng, i % 2 == 1));
+  CHECK(rejected > 150);  // random bytes are almost never a mesh
+}
+
+TEST_CASE("draco decoder survives truncated and bit-flipped encodings", "[draco][fuzz]") {
+  const TriangleSoup model = fuzz_model();
+  std::mt19937 rng(7);
+  for (int speed : {0, 10}) {  // edgebreaker and sequential encodings
+    io::DracoOptions options;
+    options.speed = speed;
+    const plugins::DracoEncoded valid = plugins::encode_draco(model, options);
+    REQUIRE(decode_outcome(valid.bytes) == 0);
+    int rejected = 0;
+    for (int i = 0; i < 100; ++i) rejected += decode_outcome(damaged(valid.bytes, rng));
+    CHECK(rejected > 0);
+  }
+}
+
+TEST_CASE("damaged .drc files with face regions read or fail cleanly", "[draco][fuzz]") {
+  io::Registry registry;
+  plugins::register_draco_formats(registry);
+  test::TempDir dir("draco_fuzz");
+  io::write_surface(registry, fuzz_model(), dir / "valid.drc");
+  const std::vector<char> valid = io::read_file_bytes(dir / "valid.drc");
+  std::mt19937 rng(99);
+  for (int i = 0; i < 60; ++i) {
+    const std::vector<char> bytes = damaged(valid, rng);
+    test::write_bytes(dir / "bad.drc", bytes);
+    try {
+      const TriangleSoup soup = io::read_surface(registry, dir / "bad.drc");
+      CHECK((!soup.has_face_regions() || soup.face_regions.size() == soup.num_triangles()));
+    } catch (const InputError& error) {
+      CHECK_THAT(error.what(), Catch::Contains("bad.drc"));
+    }
+  }
+}
