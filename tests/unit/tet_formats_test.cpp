@@ -12,7 +12,6 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -309,33 +308,4 @@ TEST_CASE("format-convert turns a .msh volume into its boundary surface", "[tet_
   const test::ToolRun medit = test::run_format_convert({(dir / "cube.msh").string(), (dir / "cube.mesh").string()});
   REQUIRE(medit.exit_code == 0);
   check_same(test::cube_tets(), read(dir / "cube.mesh"));
-}
-
-TEST_CASE("writing and reading 1M tets in every variant", "[.][tet_io_perf]") {
-  const TetMesh big = test::tet_io::kuhn_grid(56);  // 1,053,696 tets
-  test::TempDir dir("tet_perf");
-  const Variant variants[] = {{"a.msh", false, "4.1"}, {"b.msh", true, "4.1"}, {"c.msh", false, "2.2"},
-                              {"d.msh", true, "2.2"},  {"e.mesh", false, "4.1"}, {"f.vtu", false, "4.1"},
-                              {"g.vtu", true, "4.1"}};
-  const io::Registry registry = io::make_default_registry();
-  std::ostringstream report;
-  for (const Variant& v : variants) {
-    io::WriteOptions options;
-    options.binary = v.binary;
-    options.msh_version = v.msh_version;
-    using clock = std::chrono::steady_clock;
-    const auto t0 = clock::now();
-    io::write_volume(registry, big, dir / v.file, options);
-    const auto t1 = clock::now();
-    report << v.file << " (" << (v.binary ? "binary" : "ascii") << " " << v.msh_version << "): write "
-           << std::chrono::duration<double>(t1 - t0).count() << " s, "
-           << std::filesystem::file_size(dir / v.file) / 1e6 << " MB";
-    if (!std::string(v.file).ends_with(".vtu")) {
-      const TetMesh back = io::read_volume(registry, dir / v.file);
-      report << ", read " << std::chrono::duration<double>(clock::now() - t1).count() << " s";
-      CHECK(back.tets == big.tets);
-    }
-    report << "\n";
-  }
-  WARN(report.str());
 }

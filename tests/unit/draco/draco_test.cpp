@@ -7,7 +7,6 @@
 
 #include <catch2/catch.hpp>
 
-#include <chrono>
 
 using namespace mr;
 using namespace mr::draco_test;
@@ -183,20 +182,4 @@ TEST_CASE("draco garbage .drc makes format-convert exit 2 naming the file", "[dr
   CHECK(run.exit_code == 2);
   CHECK_THAT(run.err, Catch::Contains("bad.drc") && Catch::Contains("not a valid Draco mesh"));
   CHECK_FALSE(std::filesystem::exists(dir / "out.drc"));
-}
-
-TEST_CASE("draco 1M-triangle encode and decode timing", "[.][draco-bench]") {
-  const TriangleSoup grid = make_grid(1000, 500, 0.3);
-  REQUIRE(grid.num_triangles() == 1000000);
-  using clock = std::chrono::steady_clock;
-  const auto t0 = clock::now();
-  const plugins::DracoEncoded encoded = plugins::encode_draco(grid, {});
-  const auto t1 = clock::now();
-  const TriangleSoup decoded =
-      plugins::decode_draco(std::string_view(encoded.bytes.data(), encoded.bytes.size()), "grid", encoded.ids);
-  const auto t2 = clock::now();
-  const auto ms = [](auto d) { return std::chrono::duration<double, std::milli>(d).count(); };
-  WARN("1M triangles: encode " << ms(t1 - t0) << " ms, decode " << ms(t2 - t1) << " ms, " << encoded.bytes.size()
-                                << " bytes (" << double(encoded.bytes.size()) / 1e6 << " bytes/triangle)");
-  CHECK(decoded.num_triangles() == grid.num_triangles());
 }
