@@ -1,5 +1,5 @@
 #include <mr/io/default_registry.h>
-#include <mr/plugins/openmesh_formats.h>
+#include <mr/plugins/stl_obj_off_ply_formats.h>
 #include <mr/plugins/tet_formats.h>
 #ifdef MR_WITH_DRACO
 #include <mr/plugins/draco_formats.h>
@@ -15,7 +15,7 @@ namespace mr::io {
 
 Registry make_default_registry() {
   Registry registry;
-  plugins::register_openmesh_formats(registry);
+  plugins::register_stl_obj_off_ply_formats(registry);
   plugins::register_tet_formats(registry);
 #ifdef MR_WITH_DRACO
   plugins::register_draco_formats(registry);

@@ -1,7 +1,21 @@
 #include <mr/plugins/vdb_formats.h>
 
+#include "vdb_level_set.h"
+
 namespace mr::plugins {
 
-void register_vdb_formats(io::Registry&) {}  // formats arrive with the plugin's readers and writers
+void register_vdb_formats(io::Registry& registry) {
+  io::Format format;
+  format.name = "vdb";
+  format.extensions = {".vdb"};
+  format.kind = io::MeshKind::surface;
+  format.description = "OpenVDB narrow-band level set (mesh <-> signed distance grid)";
+  format.read_surface = [](const std::filesystem::path& path, const io::ReadOptions& options) {
+    return vdb::read_level_set(path, options.level_set);
+  };
+  format.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path,
+                            const io::WriteOptions& options) { vdb::write_level_set(soup, path, options.level_set); };
+  registry.add(std::move(format));
+}
 
 }  // namespace mr::plugins

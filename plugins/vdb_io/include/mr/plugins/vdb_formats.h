@@ -4,7 +4,8 @@
 
 namespace mr::plugins {
 
-/// Registers this plugin's formats (see the plugin's src/ for the list).
+/// Registers "vdb" (.vdb): surfaces written as narrow-band level sets
+/// (signed by the winding number) and read back by meshing the zero level.
 void register_vdb_formats(io::Registry& registry);
 
 }  // namespace mr::plugins

@@ -1,0 +1,47 @@
+#pragma once
+// The hybrid vertex position of the paper's section 3.4: a double position,
+// plus an exact rational one kept only while rounding to the doubles would
+// invert an incident tet. Rationals thus stay short-lived: they are dropped as
+// soon as try_round (rounding.h) accepts, so most vertices of a mesh cost
+// plain doubles and plain filtered predicates.
+//
+// Invariant: when `exact` is present, `approx` is its coordinate-wise nearest
+// double. Create rational points with from_exact only: the predicates below
+// rely on the invariant (their interval filter encloses the rational between
+// the neighbours of approx).
+
+#include <mr/kernel/exact_point.h>
+
+#include <optional>
+
+namespace mr {
+
+struct HybridPoint {
+  Vec3d approx = Vec3d::Zero();
+  std::optional<ExactPoint3> exact;
+
+  HybridPoint() = default;
+  /// A plain double position (implicit: a double point is a hybrid point).
+  HybridPoint(const Vec3d& p) : approx(p) {}  // NOLINT(google-explicit-constructor)
+
+  /// Keeps the rational only when it is not exactly a double.
+  static HybridPoint from_exact(ExactPoint3 p);
+
+  bool is_exact() const { return exact.has_value(); }
+  /// The exact position, whichever representation holds it.
+  ExactPoint3 to_exact() const { return exact ? *exact : ExactPoint3(approx); }
+
+  /// Geometric equality of the represented positions (exact comparison).
+  friend bool operator==(const HybridPoint& a, const HybridPoint& b);
+};
+
+/// Exact predicates on hybrid points; same conventions as predicates.h. When
+/// all points are doubles this is the filtered double predicate; otherwise an
+/// interval filter on the rationals runs first and GMP decides only the
+/// ambiguous cases.
+int orient3d(const HybridPoint& a, const HybridPoint& b, const HybridPoint& c,
+             const HybridPoint& d);
+int orient2d_projected(const HybridPoint& a, const HybridPoint& b, const HybridPoint& c,
+                       int axis);
+
+}  // namespace mr

@@ -1,0 +1,26 @@
+#pragma once
+// The readers and writers of this plugin, one pair per format. Readers throw
+// mr::InputError naming the file; writers throw mr::RunError.
+
+#include <mr/core/triangle_soup.h>
+
+#include <filesystem>
+
+namespace mr::plugins::stl_obj_off_ply {
+
+TriangleSoup read_stl(const std::filesystem::path& path);
+void write_stl(const TriangleSoup& soup, const std::filesystem::path& path, bool binary);
+
+TriangleSoup read_obj(const std::filesystem::path& path);
+void write_obj(const TriangleSoup& soup, const std::filesystem::path& path);
+
+TriangleSoup read_off(const std::filesystem::path& path);
+void write_off(const TriangleSoup& soup, const std::filesystem::path& path);
+
+TriangleSoup read_ply(const std::filesystem::path& path);
+void write_ply(const TriangleSoup& soup, const std::filesystem::path& path, bool binary);
+
+/// Unit normal of a triangle by the right-hand rule; zero when it is degenerate.
+Vec3d facet_normal(const Vec3d& a, const Vec3d& b, const Vec3d& c);
+
+}  // namespace mr::plugins::stl_obj_off_ply

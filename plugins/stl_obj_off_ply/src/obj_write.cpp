@@ -1,0 +1,63 @@
+// OBJ writer. Coordinates are written in the shortest form that reads back as
+// the same double (as exact as %.17g, and shorter). A corner's uv and normal
+// share its position's index; face regions become 'usemtl' runs in triangle
+// order, so the triangle order is kept.
+
+#include "formats.h"
+#include "output_file.h"
+
+namespace mr::plugins::stl_obj_off_ply {
+namespace {
+
+std::string region_name(const TriangleSoup& soup, std::int32_t region) {
+  if (region >= 0 && static_cast<std::size_t>(region) < soup.region_names.size() && !soup.region_names[region].empty()) {
+    std::string name = soup.region_names[region];
+    for (char& c : name)
+      if (c == '\n' || c == '\r') c = ' ';
+    return name;
+  }
+  return "region_" + std::to_string(region);
+}
+
+void write_vertices(const TriangleSoup& soup, OutputFile& out) {
+  for (std::size_t v = 0; v < soup.num_vertices(); ++v) {
+    const Vec3d& p = soup.positions[v];
+    out << "v " << p.x() << ' ' << p.y() << ' ' << p.z();
+    if (soup.has_colors()) out << ' ' << soup.colors[v].x() << ' ' << soup.colors[v].y() << ' ' << soup.colors[v].z();
+    out << '\n';
+  }
+  for (const Vec2f& uv : soup.uvs) out << "vt " << uv.x() << ' ' << uv.y() << '\n';
+  for (const Vec3f& n : soup.normals) out << "vn " << n.x() << ' ' << n.y() << ' ' << n.z() << '\n';
+}
+
+void write_corner(const TriangleSoup& soup, OutputFile& out, Index v) {
+  const std::int64_t one_based = std::int64_t{v} + 1;
+  out << ' ' << one_based;
+  if (soup.has_uvs() && soup.has_normals())
+    out << '/' << one_based << '/' << one_based;
+  else if (soup.has_uvs())
+    out << '/' << one_based;
+  else if (soup.has_normals())
+    out << "//" << one_based;
+}
+
+}  // namespace
+
+void write_obj(const TriangleSoup& soup, const std::filesystem::path& path) {
+  OutputFile out(path);
+  out << "# written by meshrepair\n";
+  write_vertices(soup, out);
+  std::int32_t current_region = -1;
+  for (std::size_t f = 0; f < soup.num_triangles(); ++f) {
+    if (soup.has_face_regions() && (f == 0 || soup.face_regions[f] != current_region)) {
+      current_region = soup.face_regions[f];
+      out << "usemtl " << std::string_view(region_name(soup, current_region)) << '\n';
+    }
+    out << 'f';
+    for (Index v : soup.triangles[f]) write_corner(soup, out, v);
+    out << '\n';
+  }
+  out.close();
+}
+
+}  // namespace mr::plugins::stl_obj_off_ply

@@ -1,0 +1,32 @@
+#pragma once
+// Internal interface between the format registration and the two files that
+// hold OpenVDB code. No OpenVDB type appears here.
+
+#include <mr/core/triangle_soup.h>
+#include <mr/io/options.h>
+
+#include <filesystem>
+
+namespace mr::plugins::vdb {
+
+/// Writes `soup` as a narrow-band level set grid named "surface"; the sign
+/// comes from the generalized winding number (inside where w > 1/2).
+/// Throws UsageError for invalid options, RunError when the grid cannot be made or written.
+void write_level_set(const TriangleSoup& soup, const std::filesystem::path& path,
+                     const io::LevelSetWriteOptions& options);
+
+/// Meshes the level set of the chosen float grid of a .vdb file into
+/// outward-oriented triangles. Throws InputError naming the file.
+TriangleSoup read_level_set(const std::filesystem::path& path, const io::LevelSetReadOptions& options);
+
+/// openvdb::initialize() registers grid and transform types in OpenVDB's own
+/// process-wide registry, which io::File needs before reading or writing. It is
+/// idempotent and thread-safe; this is the one place that calls it.
+void ensure_openvdb_initialized();
+
+/// True if some edge of `soup` (vertices identified by position) is not
+/// cancelled by an edge of opposite direction: then the winding number is not
+/// integer-valued and its 1/2 level spans the holes away from the surface.
+bool has_oriented_boundary(const TriangleSoup& soup);
+
+}  // namespace mr::plugins::vdb
