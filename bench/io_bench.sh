@@ -5,7 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 dir=${1:-/tmp/mr_io_bench}
 build/bench/io_bench "$dir" "${2:-1000000}"
-python3 - "$dir/mesh.stl" <<'PY'
+# Debian's python3 has python3-meshio; a pyenv python3 earlier on PATH may not.
+/usr/bin/python3 - "$dir/mesh.stl" <<'PY'
 import sys, time, os
 import meshio
 start = time.perf_counter()
