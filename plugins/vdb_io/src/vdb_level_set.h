@@ -10,7 +10,8 @@
 namespace mr::plugins::vdb {
 
 /// Writes `soup` as a narrow-band level set grid named "surface"; the sign
-/// comes from the generalized winding number (inside where w > 1/2).
+/// comes from the generalized winding number (inside where |w| > 1/2, so
+/// that soups oriented inward throughout still make a solid).
 /// Throws UsageError for invalid options, RunError when the grid cannot be made or written.
 void write_level_set(const TriangleSoup& soup, const std::filesystem::path& path,
                      const io::LevelSetWriteOptions& options);

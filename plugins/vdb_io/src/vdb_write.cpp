@@ -86,7 +86,9 @@ Vec3d world_position(const openvdb::math::Transform& xform, const Coord& ijk) {
   return {p.x(), p.y(), p.z()};
 }
 
-// Negative inside (w > 1/2), positive outside, magnitude from the band.
+// Negative inside (|w| > 1/2), positive outside, magnitude from the band.
+// |w| rather than w: a soup whose faces all point inward (common in the wild)
+// has w = -1 inside and still describes a solid.
 void sign_band(FloatGrid& grid, const WindingNumberTree& winding) {
   openvdb::tree::LeafManager<openvdb::FloatTree> leaves(grid.tree());
   const openvdb::math::Transform& xform = grid.transform();
@@ -94,7 +96,7 @@ void sign_band(FloatGrid& grid, const WindingNumberTree& winding) {
     for (std::size_t i = range.begin(); i != range.end(); ++i)
       for (auto it = leaves.leaf(i).beginValueOn(); it; ++it) {
         const float distance = std::abs(*it);
-        it.setValue(winding.evaluate(world_position(xform, it.getCoord())) > 0.5 ? -distance : distance);
+        it.setValue(std::abs(winding.evaluate(world_position(xform, it.getCoord()))) > 0.5 ? -distance : distance);
       }
   });
 }
@@ -109,7 +111,7 @@ struct BlockResult {
 
 // Where the soup has holes the 1/2 level of the winding number leaves the
 // surface and spans them. Near that level, far from the surface, the signed
-// distance is approximated by (w - 1/2) / |grad w| with central differences.
+// distance is approximated by (|w| - 1/2) / |grad |w|| with central differences.
 BlockResult span_holes_in_block(const FloatGrid& band, const WindingNumberTree& winding, const Coord& origin,
                                 double half_width) {
   constexpr int padded = block_dim + 2;
@@ -118,7 +120,7 @@ BlockResult span_holes_in_block(const FloatGrid& band, const WindingNumberTree& 
   for (int x = -1; x <= block_dim; ++x)
     for (int y = -1; y <= block_dim; ++y)
       for (int z = -1; z <= block_dim; ++z)
-        at(x, y, z) = winding.evaluate(world_position(band.transform(), origin.offsetBy(x, y, z)));
+        at(x, y, z) = std::abs(winding.evaluate(world_position(band.transform(), origin.offsetBy(x, y, z))));
   BlockResult result;
   auto accessor = band.getConstAccessor();
   const double voxel = band.voxelSize()[0];

@@ -1,0 +1,209 @@
+#include "test_support.h"
+
+#include <mr/core/errors.h>
+#include <mr/io/default_registry.h>
+#include <mr/io/mesh_io.h>
+
+#include <catch2/catch.hpp>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <map>
+
+namespace mr {
+namespace {
+
+// Every edge is used once in each direction: closed, consistently oriented
+// and edge-manifold.
+bool is_closed_and_oriented(const TriangleSoup& soup) {
+  std::map<std::pair<Index, Index>, int> directed;
+  for (const Triangle& t : soup.triangles)
+    for (int e = 0; e < 3; ++e) ++directed[{t[e], t[(e + 1) % 3]}];
+  for (const auto& [edge, count] : directed) {
+    const auto opposite = directed.find({edge.second, edge.first});
+    if (count != 1 || opposite == directed.end() || opposite->second != 1) return false;
+  }
+  return !soup.triangles.empty();
+}
+
+// Distance from p to the surface of the box [lo, hi]^3.
+double distance_to_box_surface(const Vec3d& p, double lo, double hi) {
+  const Vec3d outside = (Vec3d::Constant(lo) - p).cwiseMax(p - Vec3d::Constant(hi)).cwiseMax(0.0);
+  if (outside.squaredNorm() > 0) return outside.norm();
+  return std::min((p - Vec3d::Constant(lo)).minCoeff(), (Vec3d::Constant(hi) - p).minCoeff());
+}
+
+double max_distance_to_box(const TriangleSoup& soup, double lo, double hi) {
+  double worst = 0.0;
+  for (const Vec3d& p : soup.positions) worst = std::max(worst, distance_to_box_surface(p, lo, hi));
+  return worst;
+}
+
+TriangleSoup round_trip(const TriangleSoup& soup, const std::filesystem::path& file, double voxel,
+                        double adaptivity = 0.0) {
+  const io::Registry registry = io::make_default_registry();
+  io::WriteOptions write;
+  write.level_set.voxel_size = voxel;
+  io::write_surface(registry, soup, file, write);
+  io::ReadOptions read;
+  read.level_set.adaptivity = adaptivity;
+  return io::read_surface(registry, file, read);
+}
+
+std::vector<char> read_all(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+TEST_CASE("a cube round-trips through a level set", "[vdb]") {
+  test::TempDir dir("vdb_cube");
+  const double voxel = 0.02;
+  const TriangleSoup back = round_trip(test::cube_soup(), dir / "cube.vdb", voxel);
+  CHECK(is_closed_and_oriented(back));
+  CHECK(test::enclosed_volume(back) == Approx(1.0).epsilon(0.03));
+  CHECK(max_distance_to_box(back, 0.0, 1.0) < 1.5 * voxel);
+}
+
+TEST_CASE("the default voxel size is the bounding box diagonal / 256", "[vdb]") {
+  test::TempDir dir("vdb_default");
+  const TriangleSoup back = round_trip(test::cube_soup(0, 2), dir / "cube.vdb", 0.0);
+  const double voxel = std::sqrt(12.0) / 256.0;
+  CHECK(is_closed_and_oriented(back));
+  CHECK(test::enclosed_volume(back) == Approx(8.0).epsilon(0.03));
+  CHECK(max_distance_to_box(back, 0.0, 2.0) < 1.5 * voxel);
+}
+
+TEST_CASE("an open cube still gives a closed surface, signed by the winding number", "[vdb]") {
+  test::TempDir dir("vdb_open");
+  TriangleSoup open = test::cube_soup();
+  open.triangles.erase(open.triangles.begin() + 2, open.triangles.begin() + 4);  // the z = 1 face
+  const double voxel = 0.02;
+  const TriangleSoup back = round_trip(open, dir / "open.vdb", voxel);
+  CHECK(is_closed_and_oriented(back));
+  CHECK(test::enclosed_volume(back) == Approx(1.0).epsilon(0.05));
+  CHECK(max_distance_to_box(back, 0.0, 1.0) < 2.0 * voxel);
+}
+
+TEST_CASE("an inconsistent, self-intersecting soup gives the union of its solids", "[vdb]") {
+  test::TempDir dir("vdb_union");
+  TriangleSoup soup = test::cube_soup(0, 1);
+  soup.append(test::cube_soup(0.5, 1.5));
+  std::swap(soup.triangles[5][1], soup.triangles[5][2]);  // one face flipped
+  const TriangleSoup back = round_trip(soup, dir / "union.vdb", 0.02);
+  CHECK(is_closed_and_oriented(back));
+  CHECK(test::enclosed_volume(back) == Approx(2.0 - 0.125).epsilon(0.05));
+}
+
+TEST_CASE("a soup oriented inward throughout still gives an outward solid", "[vdb]") {
+  test::TempDir dir("vdb_inward");
+  TriangleSoup inward = test::cube_soup();
+  for (Triangle& t : inward.triangles) std::swap(t[1], t[2]);
+  const TriangleSoup back = round_trip(inward, dir / "inward.vdb", 0.02);
+  CHECK(is_closed_and_oriented(back));
+  CHECK(test::enclosed_volume(back) == Approx(1.0).epsilon(0.03));
+}
+
+TEST_CASE("adaptivity 0.5 gives fewer triangles than 0", "[vdb]") {
+  test::TempDir dir("vdb_adaptive");
+  const TriangleSoup uniform = round_trip(test::cube_soup(), dir / "cube.vdb", 0.02, 0.0);
+  const io::Registry registry = io::make_default_registry();
+  io::ReadOptions read;
+  read.level_set.adaptivity = 0.5;
+  const TriangleSoup adaptive = io::read_surface(registry, dir / "cube.vdb", read);
+  CHECK(adaptive.num_triangles() > 0);
+  CHECK(adaptive.num_triangles() < uniform.num_triangles() / 2);
+  CHECK(test::enclosed_volume(adaptive) == Approx(1.0).epsilon(0.05));
+}
+
+TEST_CASE("invalid level set options are usage errors", "[vdb]") {
+  test::TempDir dir("vdb_options");
+  const io::Registry registry = io::make_default_registry();
+  io::WriteOptions write;
+  write.level_set.voxel_size = -1;
+  CHECK_THROWS_AS(io::write_surface(registry, test::cube_soup(), dir / "a.vdb", write), UsageError);
+  write.level_set.voxel_size = 1e-7;  // far too many voxels
+  CHECK_THROWS_AS(io::write_surface(registry, test::cube_soup(), dir / "a.vdb", write), UsageError);
+  write.level_set.voxel_size = 0.1;
+  write.level_set.half_width = 0.5;
+  CHECK_THROWS_AS(io::write_surface(registry, test::cube_soup(), dir / "a.vdb", write), UsageError);
+  CHECK(dir.files().empty());
+}
+
+TEST_CASE("garbage .vdb input is exit 2 naming the file, with no output", "[vdb]") {
+  test::TempDir dir("vdb_garbage");
+  const auto in = dir / "garbage.vdb";
+  test::write_text(in, "this is not an OpenVDB file at all, just some text to fill it up");
+  const test::ToolRun run = test::run_format_convert({in.string(), (dir / "out.stl").string()});
+  CHECK(run.exit_code == 2);
+  CHECK(run.err.find(in.string()) != std::string::npos);
+  CHECK(dir.files() == std::vector<std::string>{"garbage.vdb"});
+}
+
+TEST_CASE("truncated .vdb files are input errors naming the file", "[vdb]") {
+  test::TempDir dir("vdb_truncated");
+  const io::Registry registry = io::make_default_registry();
+  io::WriteOptions write;
+  write.level_set.voxel_size = 0.1;
+  io::write_surface(registry, test::cube_soup(), dir / "cube.vdb", write);
+  const std::vector<char> bytes = read_all(dir / "cube.vdb");
+  REQUIRE(bytes.size() > 200);
+  const auto cut_file = dir / "cut.vdb";
+  for (std::size_t size = 1; size < bytes.size(); size += std::max<std::size_t>(1, bytes.size() / 97)) {
+    INFO("truncated to " << size << " of " << bytes.size() << " bytes");
+    test::write_bytes(cut_file, std::vector<char>(bytes.begin(), bytes.begin() + static_cast<long>(size)));
+    try {
+      io::read_surface(registry, cut_file);
+      FAIL("a truncated file was read");
+    } catch (const InputError& e) {
+      CHECK(std::string(e.what()).find(cut_file.string()) != std::string::npos);
+    }
+  }
+}
+
+TEST_CASE("a .vdb without a float grid is an input error", "[vdb]") {
+  test::TempDir dir("vdb_int_grid");
+  const io::Registry registry = io::make_default_registry();
+  io::write_surface(registry, test::cube_soup(), dir / "cube.vdb");
+  std::vector<char> bytes = read_all(dir / "cube.vdb");
+  // Same size values: relabelling the tree type keeps the file readable.
+  const std::string from = "Tree_float_5_4_3", to = "Tree_int32_5_4_3";
+  auto at = std::search(bytes.begin(), bytes.end(), from.begin(), from.end());
+  REQUIRE(at != bytes.end());
+  for (; at != bytes.end(); at = std::search(at, bytes.end(), from.begin(), from.end()))
+    std::copy(to.begin(), to.end(), at);
+  test::write_bytes(dir / "int.vdb", bytes);
+  try {
+    io::read_surface(registry, dir / "int.vdb");
+    FAIL("a file without float grids was read");
+  } catch (const InputError& e) {
+    CHECK(e.path() == (dir / "int.vdb").string());
+    CHECK(e.problem().find("float") != std::string::npos);
+  }
+}
+
+}  // namespace mr
+
+namespace mr {
+
+TEST_CASE("writing a level set is deterministic, whatever the thread count", "[vdb]") {
+  test::TempDir dir("vdb_determinism");
+  const io::Registry registry = io::make_default_registry();
+  TriangleSoup open = test::cube_soup();
+  open.triangles.pop_back();  // a hole, so the hole-spanning band is exercised too
+  io::write_surface(registry, open, dir / "a.vdb");
+  io::write_surface(registry, open, dir / "b.vdb");
+  {
+    tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    io::write_surface(registry, open, dir / "c.vdb");
+  }
+  const std::vector<char> a = read_all(dir / "a.vdb");
+  CHECK(a.size() > 100);
+  CHECK(a == read_all(dir / "b.vdb"));
+  CHECK(a == read_all(dir / "c.vdb"));
+}
+
+}  // namespace mr
