@@ -1,0 +1,56 @@
+#pragma once
+// Simplification of a triangle soup inside the epsilon-envelope of the input
+// (the preprocessing step of the paper, section 3.4 "Input Simplification"):
+// edge collapses ordered by a quadric-plus-length cost, then angle-improving
+// edge flips. Every accepted operation keeps each changed triangle inside the
+// envelope of the ORIGINAL input, turns no face normal by more than a bound,
+// keeps the mesh a valid halfedge mesh (link condition) and creates no new
+// self-intersection (exact test). Non-manifold parts are kept aside untouched.
+
+#include <mr/core/triangle_soup.h>
+
+#include <cstddef>
+#include <cstdint>
+
+namespace mr::simplify {
+
+struct SimplifyOptions {
+  /// Envelope radius relative to the input's bounding-box diagonal. Used
+  /// when epsilon_abs is 0.
+  double epsilon_rel = 1e-3;
+  /// Absolute envelope radius; overrides epsilon_rel when > 0.
+  double epsilon_abs = 0.0;
+  /// Stop collapsing at this many faces (of the manifold part plus the kept
+  /// faces); 0 means as far as the envelope allows.
+  std::size_t target_faces = 0;
+  /// Largest angle (degrees) between a face's normal before and after an operation.
+  double max_normal_deviation_deg = 60.0;
+  /// Passes of angle-improving edge flips after the collapses; 0 disables them.
+  int flip_passes = 3;
+  /// Worker threads for the parallel checks; 0 means all hardware threads.
+  /// The output does not depend on it.
+  int threads = 0;
+};
+
+struct SimplifyResult {
+  TriangleSoup soup;
+  std::size_t faces_before = 0;
+  std::size_t faces_after = 0;
+  std::size_t kept_aside_faces = 0;  ///< non-manifold or repeated-index faces passed through
+  std::size_t locked_vertices = 0;   ///< vertices never moved (non-manifold neighbourhood)
+  std::size_t collapses = 0;
+  std::size_t flips = 0;
+  double epsilon = 0.0;              ///< absolute radius used
+  double seconds_setup = 0.0;        ///< weld, halfedge mesh, envelope and grid construction
+  double seconds_collapse = 0.0;
+  double seconds_flip = 0.0;
+};
+
+/// Simplifies `input`. The output keeps the input's vertex positions (a subset
+/// of them, after welding bit-identical ones); attributes (normals, UVs,
+/// colours, regions) are dropped. Deterministic: the same input and options
+/// give the same output whatever the thread count. Throws mr::UsageError on
+/// a non-positive epsilon or an inconsistent soup.
+SimplifyResult simplify_in_envelope(const TriangleSoup& input, const SimplifyOptions& options = {});
+
+}  // namespace mr::simplify

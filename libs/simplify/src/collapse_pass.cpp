@@ -1,0 +1,129 @@
+#include "passes.h"
+
+#include <tbb/parallel_for.h>
+
+#include <queue>
+
+namespace mr::simplify {
+namespace {
+
+constexpr std::size_t kBatchSize = 256;
+
+struct Candidate {
+  double cost = 0.0;
+  std::uint32_t halfedge = 0;
+  std::uint32_t stamp = 0;
+  // Cheapest first; ties broken by halfedge index so the order is total.
+  bool operator>(const Candidate& other) const {
+    return cost != other.cost ? cost > other.cost : halfedge > other.halfedge;
+  }
+};
+
+class CollapseQueue {
+ public:
+  explicit CollapseQueue(const MeshState& state) : state_(state), stamps_(state.mesh().n_halfedges(), 0) {}
+
+  void fill_initially() {
+    const TriMesh& mesh = state_.mesh();
+    const std::size_t n = mesh.n_halfedges();
+    std::vector<double> costs(n, -1.0);
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+      const TriMesh::HalfedgeHandle h(static_cast<int>(i));
+      if (state_.is_collapse_candidate(h)) costs[i] = state_.collapse_cost(h);
+    });
+    std::vector<Candidate> all;
+    for (std::size_t i = 0; i < n; ++i)
+      if (costs[i] >= 0.0) all.push_back({costs[i], static_cast<std::uint32_t>(i), 0});
+    heap_ = Heap(std::greater<Candidate>(), std::move(all));
+  }
+
+  void push(TriMesh::HalfedgeHandle h) {
+    const auto i = static_cast<std::size_t>(h.idx());
+    ++stamps_[i];
+    if (state_.is_collapse_candidate(h)) heap_.push({state_.collapse_cost(h), std::uint32_t(i), stamps_[i]});
+  }
+  void push_back(const Candidate& c) { heap_.push(c); }
+
+  /// The cheapest current candidate, or false when none is left.
+  bool pop(Candidate& out) {
+    while (!heap_.empty()) {
+      out = heap_.top();
+      heap_.pop();
+      if (out.stamp == stamps_[out.halfedge] && state_.is_collapse_candidate(TriMesh::HalfedgeHandle(int(out.halfedge))))
+        return true;
+    }
+    return false;
+  }
+
+ private:
+  using Heap = std::priority_queue<Candidate, std::vector<Candidate>, std::greater<Candidate>>;
+  const MeshState& state_;
+  std::vector<std::uint32_t> stamps_;
+  Heap heap_;
+};
+
+// Pops up to kBatchSize candidates whose regions (v0 and its one-ring) are
+// pairwise disjoint; the others are pushed back after the batch.
+std::vector<Candidate> pop_batch(const TriMesh& mesh, CollapseQueue& queue, std::vector<std::uint32_t>& marks,
+                                 std::uint32_t batch_id) {
+  std::vector<Candidate> batch;
+  std::vector<Candidate> deferred;
+  Candidate c;
+  while (batch.size() < kBatchSize && deferred.size() < 4 * kBatchSize && queue.pop(c)) {
+    const TriMesh::HalfedgeHandle h(static_cast<int>(c.halfedge));
+    const auto v0 = mesh.from_vertex_handle(h);
+    bool free = marks[v0.idx()] != batch_id;
+    for (auto v : mesh.vv_range(v0)) free = free && marks[v.idx()] != batch_id;
+    if (!free) {
+      deferred.push_back(c);
+      continue;
+    }
+    marks[v0.idx()] = batch_id;
+    for (auto v : mesh.vv_range(v0)) marks[v.idx()] = batch_id;
+    batch.push_back(c);
+  }
+  for (const Candidate& d : deferred) queue.push_back(d);
+  return batch;
+}
+
+void requeue_around(const TriMesh& mesh, CollapseQueue& queue, const std::vector<TriMesh::VertexHandle>& support,
+                    TriMesh::VertexHandle v1) {
+  for (auto s : support)
+    for (auto h : mesh.voh_range(s)) queue.push(h);
+  for (auto h : mesh.vih_range(v1)) queue.push(h);
+}
+
+}  // namespace
+
+std::size_t collapse_edges(MeshState& state, std::size_t target_faces) {
+  TriMesh& mesh = state.mesh();
+  CollapseQueue queue(state);
+  queue.fill_initially();
+  std::vector<std::uint32_t> marks(mesh.n_vertices(), 0);
+  std::size_t collapses = 0;
+  std::vector<TriMesh::VertexHandle> support;
+  for (std::uint32_t batch_id = 1; state.face_count() > target_faces; ++batch_id) {
+    const std::vector<Candidate> batch = pop_batch(mesh, queue, marks, batch_id);
+    if (batch.empty()) break;
+    std::vector<std::uint8_t> passed(batch.size(), 0);
+    tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t i) {
+      passed[i] = state.collapse_passes_local_checks(TriMesh::HalfedgeHandle(int(batch[i].halfedge)));
+    });
+    for (std::size_t i = 0; i < batch.size() && state.face_count() > target_faces; ++i) {
+      const TriMesh::HalfedgeHandle h(static_cast<int>(batch[i].halfedge));
+      if (!passed[i] || !mesh.is_collapse_ok(h) || !state.collapse_keeps_faces_apart(h)) continue;
+      const auto v0 = mesh.from_vertex_handle(h);
+      const auto v1 = mesh.to_vertex_handle(h);
+      support.clear();
+      for (auto v : mesh.vv_range(v0))
+        if (v != v1) support.push_back(v);
+      support.push_back(v1);
+      state.collapse(h);
+      ++collapses;
+      requeue_around(mesh, queue, support, v1);
+    }
+  }
+  return collapses;
+}
+
+}  // namespace mr::simplify

@@ -1,0 +1,42 @@
+#pragma once
+// A uniform hash grid of face bounding boxes that grows as faces change: a
+// changed face is inserted again and its old entries stay behind. Queries
+// return a superset of the faces whose current box overlaps the query box, as
+// long as every face was (re)inserted with its current box; callers test the
+// candidates against current geometry and skip deleted faces.
+
+#include <mr/core/types.h>
+
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace mr::simplify {
+
+class FaceGrid {
+ public:
+  FaceGrid() = default;
+  FaceGrid(const Vec3d& origin, double cell_size);
+
+  void insert(std::uint32_t face, const Vec3d& lo, const Vec3d& hi);
+  /// Candidate faces whose box may overlap [lo, hi], sorted, without repeats.
+  void query(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const;
+
+ private:
+  // Faces spanning more cells than this go to a list every query visits.
+  static constexpr std::int64_t kMaxCellsPerFace = 64;
+
+  std::array<std::int64_t, 3> cell_of(const Vec3d& p) const;
+  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z);
+  void collect_from_all_cells(const std::array<std::int64_t, 3>& a, const std::array<std::int64_t, 3>& b,
+                              std::vector<std::uint32_t>& out) const;
+
+  Vec3d origin_ = Vec3d::Zero();
+  double cell_size_ = 1.0;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+  std::vector<std::uint32_t> oversize_;
+  std::vector<std::uint8_t> in_oversize_;
+};
+
+}  // namespace mr::simplify

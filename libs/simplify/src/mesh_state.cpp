@@ -1,0 +1,181 @@
+#include "mesh_state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mr::simplify {
+
+MeshState::MeshState(const TriangleSoup& input, const TriangleSoup& welded,
+                     const DerivedTolerances& tolerances)
+    : tolerances_(tolerances) {
+  ToTriMeshResult converted = to_trimesh(welded);
+  mesh_ = std::move(converted.mesh);
+  mesh_.request_vertex_status();
+  mesh_.request_edge_status();
+  mesh_.request_halfedge_status();
+  mesh_.request_face_status();
+  live_faces_ = mesh_.n_faces();
+  for (std::size_t f : converted.rejected_triangles) {
+    const Triangle& t = welded.triangles[f];
+    kept_aside_triangles_.push_back(t);
+    kept_aside_.push_back({welded.positions[t[0]], welded.positions[t[1]], welded.positions[t[2]]});
+  }
+  lock_non_manifold_vertices();
+  envelope::EnvelopeOptions envelope_options;
+  envelope_options.epsilon = tolerances_.epsilon;
+  envelope_ = envelope::make_envelope(input, envelope_options);
+  envelope_options.stage = 2;
+  fine_envelope_ = envelope::make_envelope(input, envelope_options);
+  build_boundary_envelope();
+  build_grid();
+  build_quadrics();
+}
+
+std::size_t MeshState::locked_vertices() const {
+  return static_cast<std::size_t>(std::count(locked_.begin(), locked_.end(), std::uint8_t(1)));
+}
+
+Vec3d MeshState::point(TriMesh::VertexHandle v) const {
+  const auto& p = mesh_.point(v);
+  return {p[0], p[1], p[2]};
+}
+
+Corners MeshState::corners(TriMesh::FaceHandle f) const {
+  Corners c;
+  int k = 0;
+  for (auto v : mesh_.fv_range(f)) c[k++] = point(v);
+  return c;
+}
+
+// Vertices of kept-aside faces stay where they are so those faces stay
+// attached; so do vertices whose faces do not form one fan.
+void MeshState::lock_non_manifold_vertices() {
+  locked_.assign(mesh_.n_vertices(), 0);
+  for (const Triangle& t : kept_aside_triangles_)
+    for (Index v : t) locked_[v] = 1;
+  for (auto v : mesh_.vertices())
+    if (!mesh_.is_manifold(v)) locked_[v.idx()] = 1;
+}
+
+// Boundary edges of the manifold part, as degenerate triangles (a, b, a): the
+// envelope of the input's boundary curve.
+void MeshState::build_boundary_envelope() {
+  TriangleSoup curve;
+  curve.positions.reserve(mesh_.n_vertices());
+  for (auto v : mesh_.vertices()) curve.positions.push_back(point(v));
+  for (auto h : mesh_.halfedges())
+    if (mesh_.is_boundary(h)) {
+      const auto a = static_cast<Index>(mesh_.from_vertex_handle(h).idx());
+      const auto b = static_cast<Index>(mesh_.to_vertex_handle(h).idx());
+      curve.triangles.push_back({a, b, a});
+    }
+  if (curve.triangles.empty()) return;
+  envelope::EnvelopeOptions options;
+  options.epsilon = tolerances_.epsilon;
+  boundary_envelope_ = envelope::make_envelope(curve, options);
+}
+
+void MeshState::build_grid() {
+  Vec3d lo = Vec3d::Constant(std::numeric_limits<double>::infinity());
+  Vec3d hi = -lo;
+  for (auto v : mesh_.vertices()) {
+    lo = lo.cwiseMin(point(v));
+    hi = hi.cwiseMax(point(v));
+  }
+  for (const Corners& c : kept_aside_)
+    for (const Vec3d& p : c) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  if (!(lo.x() <= hi.x())) return;
+  double total_length = 0.0;
+  for (auto e : mesh_.edges()) total_length += mesh_.calc_edge_length(e);
+  const double diagonal = (hi - lo).norm();
+  const double mean_length = mesh_.n_edges() ? total_length / double(mesh_.n_edges()) : diagonal;
+  const double cell = std::max({2.0 * mean_length, diagonal / 2000.0, 1e-300});
+  grid_ = FaceGrid(lo - Vec3d::Constant(cell), cell);
+  for (auto f : mesh_.faces()) insert_into_grid(f);
+  for (std::size_t k = 0; k < kept_aside_.size(); ++k) {
+    const Corners& c = kept_aside_[k];
+    grid_.insert(static_cast<std::uint32_t>(mesh_.n_faces() + k), c[0].cwiseMin(c[1]).cwiseMin(c[2]),
+                 c[0].cwiseMax(c[1]).cwiseMax(c[2]));
+  }
+}
+
+void MeshState::insert_into_grid(TriMesh::FaceHandle f) {
+  const Corners c = corners(f);
+  grid_.insert(static_cast<std::uint32_t>(f.idx()), c[0].cwiseMin(c[1]).cwiseMin(c[2]),
+               c[0].cwiseMax(c[1]).cwiseMax(c[2]));
+}
+
+// Garland-Heckbert: each vertex sums the planes of its faces (unweighted, so
+// the error is a sum of squared distances).
+void MeshState::build_quadrics() {
+  quadrics_.assign(mesh_.n_vertices(), Quadric());
+  for (auto f : mesh_.faces()) {
+    const Corners c = corners(f);
+    const Vec3d n = (c[1] - c[0]).cross(c[2] - c[0]);
+    const double length = n.norm();
+    if (!(length > 0.0)) continue;
+    const Vec3d u = n / length;
+    const Quadric q(u.x(), u.y(), u.z(), -u.dot(c[0]));
+    for (auto v : mesh_.fv_range(f)) quadrics_[v.idx()] += q;
+  }
+}
+
+bool MeshState::is_collapse_candidate(TriMesh::HalfedgeHandle h) const {
+  if (mesh_.status(mesh_.edge_handle(h)).deleted()) return false;
+  const auto v0 = mesh_.from_vertex_handle(h);
+  if (locked_[v0.idx()]) return false;
+  return !mesh_.is_boundary(v0) || mesh_.is_boundary(mesh_.edge_handle(h));
+}
+
+double MeshState::collapse_cost(TriMesh::HalfedgeHandle h) const {
+  const auto v0 = mesh_.from_vertex_handle(h);
+  const auto v1 = mesh_.to_vertex_handle(h);
+  Quadric q = quadrics_[v0.idx()];
+  q += quadrics_[v1.idx()];
+  const double error = std::max(0.0, q(mesh_.point(v1)));
+  return error + tolerances_.length_weight * (point(v1) - point(v0)).squaredNorm();
+}
+
+void MeshState::collapse(TriMesh::HalfedgeHandle h) {
+  const auto v0 = mesh_.from_vertex_handle(h);
+  const auto v1 = mesh_.to_vertex_handle(h);
+  live_faces_ -= mesh_.is_boundary(mesh_.edge_handle(h)) ? 1 : 2;
+  quadrics_[v1.idx()] += quadrics_[v0.idx()];
+  mesh_.collapse(h);
+  for (auto f : mesh_.vf_range(v1)) insert_into_grid(f);
+}
+
+void MeshState::flip(TriMesh::EdgeHandle e) {
+  mesh_.flip(e);
+  insert_into_grid(mesh_.face_handle(mesh_.halfedge_handle(e, 0)));
+  insert_into_grid(mesh_.face_handle(mesh_.halfedge_handle(e, 1)));
+}
+
+TriangleSoup MeshState::to_output() const {
+  TriangleSoup soup;
+  constexpr Index kUnused = Index(-1);
+  std::vector<Index> remap(mesh_.n_vertices(), kUnused);
+  auto output_index = [&](int v) {
+    if (remap[v] == kUnused) {
+      remap[v] = static_cast<Index>(soup.positions.size());
+      soup.positions.push_back(point(TriMesh::VertexHandle(v)));
+    }
+    return remap[v];
+  };
+  for (auto f : mesh_.faces()) {
+    if (mesh_.status(f).deleted()) continue;
+    Triangle t{};
+    int k = 0;
+    for (auto v : mesh_.fv_range(f)) t[k++] = output_index(v.idx());
+    soup.triangles.push_back(t);
+  }
+  for (const Triangle& t : kept_aside_triangles_)
+    soup.triangles.push_back({output_index(int(t[0])), output_index(int(t[1])), output_index(int(t[2]))});
+  return soup;
+}
+
+}  // namespace mr::simplify

@@ -1,0 +1,102 @@
+#pragma once
+// The working state of one simplification: the halfedge mesh of the manifold
+// part, which vertices must not move, the envelopes of the original input and
+// of its boundary curve, a grid of current faces (for the exact
+// self-intersection test) and per-vertex quadrics (for the collapse cost).
+// Checks are const and may run on many threads at once; operations are not.
+
+#include "face_grid.h"
+
+#include <mr/core/openmesh_convert.h>
+#include <mr/envelope/envelope.h>
+#include <mr/simplify/simplify.h>
+
+#include <OpenMesh/Core/Geometry/QuadricT.hh>
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace mr::simplify {
+
+using Quadric = OpenMesh::Geometry::QuadricT<double>;
+using Corners = std::array<Vec3d, 3>;
+
+/// Tolerances derived from the user's options.
+struct DerivedTolerances {
+  double epsilon = 0.0;
+  double cos_max_normal_deviation = 0.5;
+  double length_weight = 1e-2;  ///< weight of the squared edge length in the collapse cost
+};
+
+class MeshState {
+ public:
+  /// `welded` has bit-identical vertices merged; `input` is the original soup
+  /// whose envelope bounds every changed triangle.
+  MeshState(const TriangleSoup& input, const TriangleSoup& welded, const DerivedTolerances& tolerances);
+
+  TriMesh& mesh() { return mesh_; }
+  const TriMesh& mesh() const { return mesh_; }
+  std::size_t kept_aside_faces() const { return kept_aside_.size(); }
+  std::size_t locked_vertices() const;
+  std::size_t face_count() const { return live_faces_ + kept_aside_.size(); }
+
+  /// Whether halfedge h (v0 -> v1) may ever be collapsed, and at what cost.
+  bool is_collapse_candidate(TriMesh::HalfedgeHandle h) const;
+  double collapse_cost(TriMesh::HalfedgeHandle h) const;
+
+  /// Everything about collapsing h except the self-intersection test: locks,
+  /// boundary curve, link condition, degeneracy, normals and the envelope.
+  bool collapse_passes_local_checks(TriMesh::HalfedgeHandle h) const;
+  /// No face after the collapse meets another improperly (exact).
+  bool collapse_keeps_faces_apart(TriMesh::HalfedgeHandle h) const;
+  void collapse(TriMesh::HalfedgeHandle h);
+
+  /// The flip of edge e raises the smallest angle of its two faces and
+  /// passes the local checks (as for collapses).
+  bool flip_improves_locally(TriMesh::EdgeHandle e) const;
+  bool flip_keeps_faces_apart(TriMesh::EdgeHandle e) const;
+  void flip(TriMesh::EdgeHandle e);
+
+  /// The manifold part followed by the kept-aside faces, unreferenced vertices dropped.
+  TriangleSoup to_output() const;
+
+ private:
+  struct NewFace {
+    Corners corners;
+    Vec3d old_normal;             // of the face it replaces (zero if none or degenerate)
+  };
+
+  Vec3d point(TriMesh::VertexHandle v) const;
+  Corners corners(TriMesh::FaceHandle f) const;
+  void lock_non_manifold_vertices();
+  void build_boundary_envelope();
+  void build_grid();
+  void build_quadrics();
+  void insert_into_grid(TriMesh::FaceHandle f);
+
+  std::vector<NewFace> faces_after_collapse(TriMesh::HalfedgeHandle h) const;
+  std::vector<NewFace> faces_after_flip(TriMesh::EdgeHandle e) const;
+  bool link_condition_holds(TriMesh::HalfedgeHandle h) const;
+  bool collapse_stays_in_plane(TriMesh::HalfedgeHandle h, const std::vector<NewFace>& faces) const;
+  bool boundary_curve_kept(TriMesh::HalfedgeHandle h) const;
+  bool shapes_acceptable(const std::vector<NewFace>& faces) const;
+  bool inside_envelope(const std::vector<NewFace>& faces) const;
+  /// replaced(face index) tells faces the operation removes or rewrites.
+  template <class Replaced>
+  bool faces_apart(const std::vector<NewFace>& faces, Replaced&& replaced) const;
+
+  TriMesh mesh_;
+  DerivedTolerances tolerances_;
+  std::vector<Corners> kept_aside_;               // corners of faces OpenMesh rejected
+  std::vector<Triangle> kept_aside_triangles_;    // their welded indices
+  std::vector<std::uint8_t> locked_;              // per vertex: never moved or flipped around
+  std::unique_ptr<envelope::Envelope> envelope_;
+  std::unique_ptr<envelope::Envelope> fine_envelope_;  // stage 2: asked only where envelope_ refuses
+  std::unique_ptr<envelope::Envelope> boundary_envelope_;  // null when the input has no boundary
+  FaceGrid grid_;
+  std::vector<Quadric> quadrics_;
+  std::size_t live_faces_ = 0;
+};
+
+}  // namespace mr::simplify

@@ -1,0 +1,77 @@
+#include <mr/simplify/simplify.h>
+
+#include "mesh_state.h"
+#include "passes.h"
+#include "weld.h"
+
+#include <mr/core/errors.h>
+
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+namespace mr::simplify {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+DerivedTolerances derive_tolerances(const TriangleSoup& input, const SimplifyOptions& options) {
+  if (!(options.epsilon_abs >= 0.0) || !std::isfinite(options.epsilon_abs))
+    throw UsageError("absolute epsilon must be finite and >= 0");
+  if (options.epsilon_abs == 0.0 && !(options.epsilon_rel > 0.0 && std::isfinite(options.epsilon_rel)))
+    throw UsageError("relative epsilon must be finite and > 0");
+  if (!(options.max_normal_deviation_deg > 0.0 && options.max_normal_deviation_deg <= 180.0))
+    throw UsageError("maximum normal deviation must be in (0, 180] degrees");
+  if (options.threads < 0) throw UsageError("thread count must be >= 0");
+  DerivedTolerances t;
+  t.epsilon = options.epsilon_abs > 0.0 ? options.epsilon_abs
+                                        : options.epsilon_rel * bounding_box_diagonal(input);
+  t.cos_max_normal_deviation = std::cos(options.max_normal_deviation_deg * std::numbers::pi / 180.0);
+  return t;
+}
+
+SimplifyResult run(const TriangleSoup& input, const SimplifyOptions& options, const DerivedTolerances& tolerances) {
+  SimplifyResult result;
+  result.faces_before = input.triangles.size();
+  result.epsilon = tolerances.epsilon;
+  auto start = std::chrono::steady_clock::now();
+  MeshState state(input, weld_identical_vertices(input), tolerances);
+  result.kept_aside_faces = state.kept_aside_faces();
+  result.locked_vertices = state.locked_vertices();
+  result.seconds_setup = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  result.collapses = collapse_edges(state, options.target_faces);
+  result.seconds_collapse = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  result.flips = flip_edges(state, options.flip_passes);
+  result.seconds_flip = seconds_since(start);
+
+  result.soup = state.to_output();
+  result.faces_after = result.soup.triangles.size();
+  return result;
+}
+
+}  // namespace
+
+SimplifyResult simplify_in_envelope(const TriangleSoup& input, const SimplifyOptions& options) {
+  if (const std::string problem = find_soup_inconsistency(input); !problem.empty())
+    throw UsageError("simplify: inconsistent input soup: " + problem);
+  const DerivedTolerances tolerances = derive_tolerances(input, options);
+  if (input.triangles.empty()) {
+    SimplifyResult result;
+    result.epsilon = tolerances.epsilon;
+    return result;
+  }
+  if (!(tolerances.epsilon > 0.0))
+    throw UsageError("simplify: epsilon is 0 (the input has a zero-size bounding box)");
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  return arena.execute([&] { return run(input, options, tolerances); });
+}
+
+}  // namespace mr::simplify

@@ -1,0 +1,31 @@
+#pragma once
+// Vertex-to-tet incidence, computed on demand: the Mesh stores none, so
+// operations never have to keep it up to date.
+
+#include <mr/tetmesh/mesh.h>
+
+#include <span>
+#include <vector>
+
+namespace mr::tetmesh {
+
+/// For every vertex slot, the live tets using it (increasing tet index),
+/// in compressed rows.
+class VertexTets {
+ public:
+  explicit VertexTets(const Mesh& mesh);
+  std::span<const Index> of(Index v) const {
+    return {tets_.data() + offsets_[v], tets_.data() + offsets_[v + 1]};
+  }
+
+ private:
+  std::vector<std::size_t> offsets_;
+  std::vector<Index> tets_;
+};
+
+/// The live tets around vertex v, found by walking the adjacency from
+/// `seed`, a live tet that has v as a corner (mr::UsageError otherwise).
+/// Sorted by tet index. Cost: proportional to the size of the star.
+std::vector<Index> tets_around_vertex(const Mesh& mesh, Index v, Index seed);
+
+}  // namespace mr::tetmesh

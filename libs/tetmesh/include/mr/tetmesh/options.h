@@ -1,0 +1,65 @@
+#pragma once
+// The options of the whole tetrahedralization pipeline (user inputs only,
+// with the paper's and fTetWild's defaults) and the parameters derived from
+// them and the input (absolute lengths), kept apart so that what a user set
+// is never confused with what was computed.
+
+#include <mr/core/triangle_soup.h>
+
+namespace mr::tetmesh {
+
+/// Which tets the final filter keeps (stage 6).
+enum class WindingRule {
+  positive,  ///< w > 1/2, as the paper: outward-oriented input
+  absolute,  ///< |w| > 1/2: also keeps solids whose faces all point inward
+};
+
+struct TetrahedralizeOptions {
+  /// Envelope radius relative to the input's bounding-box diagonal b; used
+  /// when epsilon_abs is 0.
+  double epsilon_rel = 1e-3;
+  double epsilon_abs = 0.0;
+  /// Target edge length relative to b; used when edge_length_abs is 0.
+  double edge_length_rel = 1.0 / 20.0;
+  double edge_length_abs = 0.0;
+  /// Voxel-stuffing lattice spacing relative to b (paper: b/20); 0 disables
+  /// the lattice (the background mesh then has the input and the box corners).
+  double lattice_spacing_rel = 1.0 / 20.0;
+  /// Lattice points within this distance (relative to b) of the input are
+  /// dropped (paper: delta = b/40, and delta must exceed epsilon).
+  double lattice_clearance_rel = 1.0 / 40.0;
+  /// Mesh improvement stops when the largest AMIPS energy is below this.
+  double stop_energy = 10.0;
+  /// Upper bound on mesh-improvement passes.
+  int max_passes = 80;
+  WindingRule winding_rule = WindingRule::positive;
+  /// Skip the input simplification stage.
+  bool skip_simplify = false;
+  /// Worker threads; 0 means all hardware threads.
+  int threads = 0;
+};
+
+/// Absolute values for one input. Invariant: all lengths are positive and
+/// finite, lattice_clearance > epsilon when lattice_spacing > 0.
+struct DerivedParameters {
+  Vec3d input_min = Vec3d::Zero();  ///< bounding box of the input vertices
+  Vec3d input_max = Vec3d::Zero();
+  double diagonal = 0.0;            ///< b
+  double epsilon = 0.0;
+  double edge_length = 0.0;         ///< ell
+  double lattice_spacing = 0.0;     ///< 0: no lattice
+  double lattice_clearance = 0.0;   ///< delta
+  /// Margin between the input's box and the background box: max(ell, 2 epsilon),
+  /// as fTetWild (see derive_parameters).
+  double box_margin = 0.0;
+  Vec3d box_min = Vec3d::Zero();    ///< background box
+  Vec3d box_max = Vec3d::Zero();
+};
+
+/// Computes the derived parameters. Throws mr::UsageError on a non-finite or
+/// negative option, on epsilon or edge length that end up non-positive, or
+/// on a lattice clearance not larger than epsilon; throws mr::RunError when
+/// the input has no vertex or a zero bounding-box diagonal (nothing to mesh).
+DerivedParameters derive_parameters(const TetrahedralizeOptions& options, const TriangleSoup& input);
+
+}  // namespace mr::tetmesh

@@ -1,0 +1,344 @@
+#include "test_support.h"
+#include "simplify_in_envelope.h"
+
+#include <mr/check/distance.h>
+#include <mr/check/surface_check.h>
+#include <mr/core/errors.h>
+#include <mr/io/default_registry.h>
+#include <mr/io/mesh_io.h>
+#include <mr/simplify/simplify.h>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace {
+
+using mr::Index;
+using mr::TriangleSoup;
+using mr::Vec3d;
+using mr::simplify::SimplifyOptions;
+using mr::simplify::simplify_in_envelope;
+
+// n x n cells of the unit square at z = 0, two triangles each; cells with
+// `skip(i, j)` left out (holes).
+template <class Skip>
+TriangleSoup grid(int n, Skip&& skip) {
+  TriangleSoup soup;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) soup.positions.emplace_back(double(i) / n, double(j) / n, 0.0);
+  auto at = [n](int i, int j) { return Index(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (skip(i, j)) continue;
+      soup.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      soup.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  return soup;
+}
+
+TriangleSoup full_grid(int n) {
+  return grid(n, [](int, int) { return false; });
+}
+
+// Icosahedron subdivided `levels` times, projected on the unit sphere: 20 * 4^levels faces.
+TriangleSoup icosphere(int levels) {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  TriangleSoup s;
+  for (const auto& p : {Vec3d(-1, t, 0), Vec3d(1, t, 0), Vec3d(-1, -t, 0), Vec3d(1, -t, 0), Vec3d(0, -1, t),
+                        Vec3d(0, 1, t), Vec3d(0, -1, -t), Vec3d(0, 1, -t), Vec3d(t, 0, -1), Vec3d(t, 0, 1),
+                        Vec3d(-t, 0, -1), Vec3d(-t, 0, 1)})
+    s.positions.push_back(p.normalized());
+  s.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<Index, Index>, Index> midpoints;
+    auto midpoint = [&](Index a, Index b) {
+      const auto key = std::minmax(a, b);
+      const auto [it, inserted] = midpoints.try_emplace(key, Index(s.positions.size()));
+      if (inserted) s.positions.push_back((s.positions[a] + s.positions[b]).normalized());
+      return it->second;
+    };
+    std::vector<mr::Triangle> finer;
+    for (const auto& f : s.triangles) {
+      const Index ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+      finer.insert(finer.end(), {{f[0], ab, ca}, {f[1], bc, ab}, {f[2], ca, bc}, {ab, bc, ca}});
+    }
+    s.triangles = std::move(finer);
+  }
+  return s;
+}
+
+// Boundary edges (one face) as vertex pairs of the soup.
+std::vector<std::pair<Index, Index>> boundary_edges(const TriangleSoup& soup) {
+  std::map<std::pair<Index, Index>, int> count;
+  for (const auto& t : soup.triangles)
+    for (int k = 0; k < 3; ++k) ++count[std::minmax(t[k], t[(k + 1) % 3])];
+  std::vector<std::pair<Index, Index>> edges;
+  for (const auto& [e, c] : count)
+    if (c == 1) edges.push_back(e);
+  return edges;
+}
+
+// Number of closed loops the boundary edges form; -1 if some vertex has another degree than 2.
+int boundary_loops(const TriangleSoup& soup) {
+  std::map<Index, std::vector<Index>> adjacent;
+  for (const auto& [a, b] : boundary_edges(soup)) {
+    adjacent[a].push_back(b);
+    adjacent[b].push_back(a);
+  }
+  for (const auto& [v, n] : adjacent)
+    if (n.size() != 2) return -1;
+  std::set<Index> seen;
+  int loops = 0;
+  for (const auto& [start, n] : adjacent) {
+    if (seen.count(start)) continue;
+    ++loops;
+    std::vector<Index> stack{start};
+    while (!stack.empty()) {
+      const Index v = stack.back();
+      stack.pop_back();
+      if (!seen.insert(v).second) continue;
+      for (Index w : adjacent[v]) stack.push_back(w);
+    }
+  }
+  return loops;
+}
+
+std::pair<Vec3d, Vec3d> bbox(const TriangleSoup& soup) {
+  Vec3d lo = Vec3d::Constant(1e300), hi = Vec3d::Constant(-1e300);
+  for (const auto& t : soup.triangles)
+    for (Index v : t) {
+      lo = lo.cwiseMin(soup.positions[v]);
+      hi = hi.cwiseMax(soup.positions[v]);
+    }
+  return {lo, hi};
+}
+
+// Largest distance from a boundary vertex of `from` to the boundary edges of `to`.
+double boundary_distance(const TriangleSoup& from, const TriangleSoup& to) {
+  double worst = 0.0;
+  const auto to_edges = boundary_edges(to);
+  for (const auto& [a, b] : boundary_edges(from))
+    for (Index v : {a, b}) {
+      double best = 1e300;
+      const Vec3d p = from.positions[v];
+      for (const auto& [c, d] : to_edges) {
+        const Vec3d u = to.positions[d] - to.positions[c];
+        const double s = std::clamp((p - to.positions[c]).dot(u) / u.squaredNorm(), 0.0, 1.0);
+        best = std::min(best, (to.positions[c] + s * u - p).norm());
+      }
+      worst = std::max(worst, best);
+    }
+  return worst;
+}
+
+bool has_face_at(const TriangleSoup& soup, const std::array<Vec3d, 3>& corners) {
+  for (const auto& t : soup.triangles) {
+    const std::array<Vec3d, 3> c{soup.positions[t[0]], soup.positions[t[1]], soup.positions[t[2]]};
+    for (int r = 0; r < 3; ++r)
+      if (c[r] == corners[0] && c[(r + 1) % 3] == corners[1] && c[(r + 2) % 3] == corners[2]) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("a finely tessellated plane collapses to a few triangles with its boundary kept", "[simplify]") {
+  const TriangleSoup input = full_grid(100);
+  const auto result = simplify_in_envelope(input, {});
+  INFO("faces after: " << result.faces_after);
+  CHECK(result.faces_before == 20000);
+  CHECK(result.faces_after < 50);
+  CHECK(result.faces_after == result.soup.triangles.size());
+  CHECK(result.collapses > 0);
+  CHECK(boundary_loops(result.soup) == 1);
+  CHECK(bbox(result.soup) == bbox(input));
+  CHECK(boundary_distance(input, result.soup) <= result.epsilon);
+  CHECK(boundary_distance(result.soup, input) <= result.epsilon);
+  const auto report = mr::check::check_surface(result.soup);
+  CHECK(report.self_intersecting_pairs == 0);
+  CHECK(report.degenerate_faces == 0);
+  CHECK(report.manifold());
+  CHECK(report.inconsistent_edges == 0);
+  CHECK(mr::check::one_sided_distance(result.soup, input).max <= result.epsilon);
+  // Still covers the square: the area is unchanged.
+  double area = 0.0;
+  for (const auto& t : result.soup.triangles)
+    area += 0.5 * (result.soup.positions[t[1]] - result.soup.positions[t[0]])
+                      .cross(result.soup.positions[t[2]] - result.soup.positions[t[0]])
+                      .z();
+  CHECK(area == Approx(1.0).epsilon(1e-12));
+}
+
+TEST_CASE("a sphere is reduced substantially within its distance bound", "[simplify]") {
+  const TriangleSoup input = icosphere(5);
+  REQUIRE(input.triangles.size() == 20480);
+  const auto result = simplify_in_envelope(input, {});
+  INFO("faces after: " << result.faces_after);
+  CHECK(result.faces_after < input.triangles.size() / 4);
+  const double distance = mr::check::one_sided_distance(result.soup, input).max;
+  CHECK(distance <= result.epsilon);
+  CHECK(result.epsilon == Approx(1e-3 * mr::bounding_box_diagonal(input)));
+  const auto report = mr::check::check_surface(result.soup);
+  CHECK(report.watertight());
+  CHECK(report.volume > 0.95 * mr::test::enclosed_volume(input));
+}
+
+TEST_CASE("simplification stops at the target face count", "[simplify]") {
+  SimplifyOptions options;
+  options.target_faces = 5000;
+  options.flip_passes = 0;
+  const auto result = simplify_in_envelope(icosphere(5), options);
+  CHECK(result.faces_after <= 5000);
+  CHECK(result.faces_after >= 4998);  // a collapse removes two faces
+}
+
+TEST_CASE("a hole keeps its boundary", "[simplify]") {
+  const TriangleSoup input = grid(60, [](int i, int j) { return i >= 20 && i < 40 && j >= 25 && j < 35; });
+  const auto result = simplify_in_envelope(input, {});
+  INFO("faces after: " << result.faces_after);
+  CHECK(result.faces_after < 200);
+  CHECK(boundary_loops(result.soup) == 2);
+  CHECK(bbox(result.soup) == bbox(input));
+  CHECK(boundary_distance(input, result.soup) <= result.epsilon);
+  CHECK(boundary_distance(result.soup, input) <= result.epsilon);
+  // Corners of the hole are still vertices.
+  for (const Vec3d& corner : {Vec3d(20.0 / 60, 25.0 / 60, 0), Vec3d(40.0 / 60, 35.0 / 60, 0)}) {
+    const bool found = std::any_of(result.soup.positions.begin(), result.soup.positions.end(),
+                                   [&](const Vec3d& p) { return (p - corner).norm() < 1e-15; });
+    CHECK(found);
+  }
+}
+
+TEST_CASE("non-manifold faces pass through and stay attached", "[simplify]") {
+  TriangleSoup input = full_grid(30);
+  const Index a = 15 * 31 + 10, b = 15 * 31 + 11;  // an interior grid edge
+  const Index top = Index(input.positions.size());
+  input.positions.emplace_back(10.5 / 30, 15.0 / 30, 0.2);
+  input.positions.emplace_back(11.5 / 30, 15.0 / 30, 0.2);
+  input.triangles.push_back({a, b, top});        // third face on edge (a, b): the fin
+  input.triangles.push_back({b, top + 1, top});  // a second fin face hanging on it
+  const auto before = mr::check::check_surface(input);
+  REQUIRE(before.nonmanifold_edges == 1);
+  const auto result = simplify_in_envelope(input, {});
+  // The fin and the face hanging on it: OpenMesh cannot add either (complex edge, complex vertex).
+  CHECK(result.kept_aside_faces == 2);
+  CHECK(result.faces_after < input.triangles.size() / 4);
+  CHECK(has_face_at(result.soup, {input.positions[a], input.positions[b], input.positions[top]}));
+  CHECK(has_face_at(result.soup, {input.positions[b], input.positions[top + 1], input.positions[top]}));
+  const auto after = mr::check::check_surface(result.soup);
+  CHECK(after.nonmanifold_edges == 1);
+  CHECK(after.components == 1);
+  CHECK(after.self_intersecting_pairs == 0);
+  CHECK(mr::check::one_sided_distance(result.soup, input).max <= result.epsilon);
+}
+
+TEST_CASE("simplification adds no self-intersection", "[simplify]") {
+  // Two grids crossing each other at right angles: the input intersects itself.
+  TriangleSoup input = full_grid(12);
+  TriangleSoup crossing = full_grid(12);
+  for (Vec3d& p : crossing.positions) p = Vec3d(p.x(), 0.5 + 1e-3 * p.x(), p.y() - 0.5);
+  input.append(crossing);
+  // And a thin sheet close above the first grid, within the envelope.
+  TriangleSoup sheet = full_grid(12);
+  for (Vec3d& p : sheet.positions) p = Vec3d(p.x(), p.y(), 4e-4 * std::sin(9 * p.x() + 5 * p.y()) + 6e-4);
+  input.append(sheet);
+  const auto before = mr::check::check_surface(input);
+  REQUIRE(before.self_intersecting_pairs > 0);
+  const auto result = simplify_in_envelope(input, {});
+  CHECK(result.faces_after < input.triangles.size());
+  const auto after = mr::check::check_surface(result.soup);
+  CHECK(after.self_intersecting_pairs <= before.self_intersecting_pairs);
+  CHECK(after.nonmanifold_edges == 0);
+  CHECK(mr::check::one_sided_distance(result.soup, input).max <= result.epsilon);
+}
+
+TEST_CASE("simplification is deterministic whatever the thread count", "[simplify]") {
+  TriangleSoup input = icosphere(4);
+  for (Vec3d& p : input.positions) p *= 1.0 + 0.05 * std::sin(7 * p.x()) * std::cos(5 * p.y());
+  SimplifyOptions one_thread;
+  one_thread.threads = 1;
+  const auto first = simplify_in_envelope(input, {});
+  const auto second = simplify_in_envelope(input, {});
+  const auto third = simplify_in_envelope(input, one_thread);
+  REQUIRE(first.faces_after < input.triangles.size());
+  CHECK(first.soup.positions == second.soup.positions);
+  CHECK(first.soup.triangles == second.soup.triangles);
+  CHECK(first.soup.positions == third.soup.positions);
+  CHECK(first.soup.triangles == third.soup.triangles);
+}
+
+TEST_CASE("simplification rejects bad options", "[simplify]") {
+  SimplifyOptions options;
+  options.epsilon_rel = 0.0;
+  CHECK_THROWS_AS(simplify_in_envelope(mr::test::cube_soup(), options), mr::UsageError);
+  options = {};
+  options.epsilon_abs = -1.0;
+  CHECK_THROWS_AS(simplify_in_envelope(mr::test::cube_soup(), options), mr::UsageError);
+  TriangleSoup broken = mr::test::cube_soup();
+  broken.triangles.push_back({0, 1, 99});
+  CHECK_THROWS_AS(simplify_in_envelope(broken, {}), mr::UsageError);
+  CHECK(simplify_in_envelope(TriangleSoup{}, {}).faces_after == 0);
+  // A cube cannot lose a face without leaving the envelope.
+  CHECK(simplify_in_envelope(mr::test::cube_soup(), {}).faces_after == 12);
+}
+
+namespace {
+
+mr::test::ToolRun run_simplify(const std::vector<std::string>& args) {
+  std::ostringstream out, err;
+  mr::test::ToolRun run;
+  run.exit_code = mr::tools::simplify_in_envelope(args, out, err);
+  run.out = out.str();
+  run.err = err.str();
+  return run;
+}
+
+}  // namespace
+
+TEST_CASE("simplify-in-envelope runs end to end", "[simplify]") {
+  mr::test::TempDir dir("simplify_tool");
+  const auto registry = mr::io::make_default_registry();
+  const TriangleSoup input = icosphere(4);
+  mr::io::write_surface(registry, input, dir / "in.stl");
+  const auto run = run_simplify({(dir / "in.stl").string(), (dir / "out.ply").string(), "-e", "5e-3",
+                                 "--stats", (dir / "stats.json").string(), "-j", "2"});
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+  const TriangleSoup output = mr::io::read_surface(registry, dir / "out.ply");
+  CHECK(output.triangles.size() < input.triangles.size() / 2);
+  std::ifstream stats_file(dir / "stats.json");
+  const auto stats = nlohmann::json::parse(stats_file);
+  for (const char* key : {"faces_before", "faces_after", "epsilon_rel", "epsilon_abs", "seconds",
+                          "distance_to_input_max", "collapses", "flips"})
+    CHECK(stats.contains(key));
+  CHECK(stats["faces_before"] == input.triangles.size());
+  CHECK(stats["faces_after"] == output.triangles.size());
+  CHECK(stats["epsilon_rel"].get<double>() == Approx(5e-3));
+  CHECK(stats["distance_to_input_max"].get<double>() <= stats["epsilon_abs"].get<double>());
+  for (const char* phase : {"setup", "collapse", "flip"}) CHECK(stats["seconds"].contains(phase));
+
+  const auto quiet = run_simplify({(dir / "in.stl").string(), (dir / "out2.obj").string(), "-q"});
+  CHECK(quiet.exit_code == 0);
+  CHECK(quiet.out.empty());
+}
+
+TEST_CASE("simplify-in-envelope refuses bad input and usage", "[simplify]") {
+  mr::test::TempDir dir("simplify_tool_bad");
+  mr::test::write_text(dir / "garbage.stl", "solid x\n facet normal 0 0 1\n outer loop\n vertex 1 2\n");
+  CHECK(run_simplify({(dir / "garbage.stl").string(), (dir / "out.stl").string()}).exit_code == 2);
+  const auto missing = run_simplify({(dir / "missing.stl").string(), (dir / "out.stl").string()});
+  CHECK(missing.exit_code == 2);
+  CHECK(missing.err.find("missing.stl") != std::string::npos);
+  CHECK(run_simplify({(dir / "garbage.stl").string()}).exit_code == 2);
+  mr::io::write_surface(mr::io::make_default_registry(), mr::test::cube_soup(), dir / "cube.stl");
+  CHECK(run_simplify({(dir / "cube.stl").string(), (dir / "out.stl").string(), "-e", "-1"}).exit_code == 2);
+  CHECK(dir.files() == std::vector<std::string>{"cube.stl", "garbage.stl"});
+}
