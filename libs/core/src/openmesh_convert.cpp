@@ -1,6 +1,21 @@
 #include <mr/core/openmesh_convert.h>
 
 namespace mr {
+namespace {
+
+// OpenMesh's add_face refuses a face at a complex vertex (an interior vertex)
+// or a complex edge (a halfedge already used) and logs each refusal to its
+// global error stream. Testing the same conditions first keeps that stream quiet.
+bool halfedge_structure_accepts(const TriMesh& mesh, const TriMesh::VertexHandle (&v)[3]) {
+  for (int i = 0; i < 3; ++i) {
+    if (!mesh.is_boundary(v[i]) && !mesh.is_isolated(v[i])) return false;
+    const auto h = mesh.find_halfedge(v[i], v[(i + 1) % 3]);
+    if (h.is_valid() && !mesh.is_boundary(h)) return false;
+  }
+  return true;
+}
+
+}  // namespace
 
 ToTriMeshResult to_trimesh(const TriangleSoup& soup) {
   ToTriMeshResult result;
@@ -12,8 +27,8 @@ ToTriMeshResult to_trimesh(const TriangleSoup& soup) {
   for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
     const Triangle& t = soup.triangles[f];
     const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-    // OpenMesh rejects (and logs) faces at complex edges or vertices.
-    if (repeated || !mesh.add_face(handles[t[0]], handles[t[1]], handles[t[2]]).is_valid())
+    const TriMesh::VertexHandle v[3] = {handles[t[0]], handles[t[1]], handles[t[2]]};
+    if (repeated || !halfedge_structure_accepts(mesh, v) || !mesh.add_face(v[0], v[1], v[2]).is_valid())
       result.rejected_triangles.push_back(f);
   }
   return result;
