@@ -12,7 +12,7 @@ packages=(
   libopenmesh-dev libopenvdb-dev libblosc-dev libboost-dev libboost-iostreams-dev libcgal-dev libgmp-dev libeigen3-dev
   libdraco-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtbb-dev catch2 libbenchmark-dev
   # command-line peers and checkers used by tests and benchmarks
-  draco gmsh tetgen admesh python3 python3-numpy python3-meshio python3-matplotlib
+  draco gmsh tetgen admesh time util-linux python3 python3-numpy python3-meshio python3-matplotlib
 )
 
 missing=()

@@ -9,6 +9,12 @@ BASELINE_TOOLS = {"tetrahedralize": ["ftetwild", "tetwild", "tetgen", "gmsh"], "
 DISPLAY = {"ftetwild": "fTetWild", "tetwild": "TetWild", "tetgen": "TetGen", "gmsh": "gmsh", "meshfix": "MeshFix"}
 
 
+def order(tool):
+    """Position of a baseline tool in tables: BASELINE.md's order."""
+    everything = [t for tools in BASELINE_TOOLS.values() for t in tools]
+    return everything.index(tool) if tool in everything else len(everything)
+
+
 def status_kind(text):
     """baseline.tsv status -> our failure kinds ('fail rc 134 (signal 6)' -> 'crash')."""
     text = (text or "").strip()

@@ -2,7 +2,8 @@
 
 Validity is decided here from mesh-check's JSON report, per task, never from the tool's exit code:
 - a tet mesh is valid when it has tets, none inverted or degenerate (exact orientation test on the
-  stored coordinates), and its boundary is closed (mesh-check's `--expect valid-tets`);
+  stored coordinates), its boundary is closed (mesh-check's `--expect valid-tets`) and lies within
+  the envelope of the input (when our readers can read the input);
 - a repaired surface is valid when it is watertight (closed, manifold, oriented outward, no
   degenerate face, no self-intersection: exact test);
 - a simplified surface is valid when it is non-empty and inside the envelope (sampled distance from
@@ -103,6 +104,8 @@ def verdict(task, kind, fields):
             problems.append(f"{fields['degenerate_tets']} degenerate tets")
         if not fields.get("closed"):
             problems.append(f"boundary not closed ({fields.get('boundary_edges')} boundary edges)")
+        if fields.get("within_envelope") is False:
+            problems.append(_envelope_problem(fields))
         return ("invalid", "; ".join(problems)) if problems else ("ok", "")
     if not fields.get("out_faces"):
         return "empty", "0 faces"
@@ -111,8 +114,14 @@ def verdict(task, kind, fields):
             return "ok", ""
         return "invalid", _why_not_watertight(fields)
     if fields.get("within_envelope") is False:
-        return "invalid", f"leaves the envelope (max distance {fields.get('to_reference_max_rel'):.2e} of the diagonal)"
+        return "invalid", _envelope_problem(fields)
     return "ok", ""
+
+
+def _envelope_problem(fields):
+    distance = fields.get("to_reference_max_rel")
+    where = f" (up to {distance:.2e} of the diagonal from the input)" if distance is not None else ""
+    return "leaves the envelope" + where
 
 
 def _why_not_watertight(f):

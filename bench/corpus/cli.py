@@ -155,7 +155,7 @@ def main(argv=None):
     _record_run(out_dir, args, argv, selected, corpus)
     for t in selected:
         if not t.available:
-            print(f"{t.name}: not available ({t.unavailable}); the others still run", file=sys.stderr)
+            print(f"{t.name}: not available ({t.unavailable}); the others still run", flush=True)
     store = ResultStore(os.path.join(out_dir, "results.jsonl"))
     runnable = [t for t in selected if t.available]
     finished = store.finished(tuple(filter(None, args.retry.split(","))))

@@ -158,6 +158,25 @@ def run_limited(command, cwd, limits, log_base, stop=None, env=None):
     return Outcome(code, sig, timed_out, wall, usage.ru_utime, usage.ru_stime, peak, out_path, err_path)
 
 
+NOISE = re.compile(r"error summary|\d+ (errors?|warnings?)\s*$|check the full log|^[\s:\-A-Za-z]*-{5,}\s*$", re.I)
+TELLING = re.compile(r"error|abort|terminate|exception|assert|fault|fail|cannot|invalid|killed", re.I)
+
+
+def log_summary(paths, max_chars=300):
+    """The first telling lines of the logs (errors, aborts), else the end of the first non-empty one."""
+    found = []
+    for path in paths:
+        try:
+            with open(path, "rb") as f:
+                text = f.read(1 << 20).decode("utf-8", "replace")
+        except OSError:
+            continue
+        found += [ln.strip() for ln in text.splitlines() if TELLING.search(ln) and not NOISE.search(ln)]
+    if found:
+        return " | ".join(dict.fromkeys(found[:3]))[:max_chars]
+    return next((t for t in (tail(p, max_chars) for p in paths) if t), "")
+
+
 def tail(path, max_chars=300):
     """Last lines of a log, on one line, for the results row."""
     try:

@@ -7,6 +7,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
 import numpy as np  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 from . import summary  # noqa: E402
 
@@ -47,12 +48,13 @@ def time_vs_size(rows, order, out_dir, time_limit):
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.axhline(time_limit, color="grey", linestyle="--", linewidth=1)
-    ax.text(ax.get_xlim()[0], time_limit, f" time limit {time_limit:g} s (wall)", va="bottom", color="grey", fontsize=8)
+    ax.text(ax.get_xlim()[1], time_limit, f"time limit {time_limit:g} s (wall) ", va="bottom", ha="right",
+            color="grey", fontsize=8)
     ax.set_xlabel("input faces")
     ax.set_ylabel("CPU time, user + sys [s]")
     ax.set_title("Time against input size (o = valid output, x = failed)")
     ax.grid(True, which="major", alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize=8, loc="lower right")
     return _save(fig, out_dir, "time_vs_size.png")
 
 
@@ -92,7 +94,8 @@ def _histogram_panel(ax, ok, order, field, label, log):
                     color=color(tool, order), label=f"{tool} (n={len(vs)}{extra})")
     ax.set_xlabel(label)
     ax.set_ylabel("models")
-    ax.legend(fontsize=8)
+    ax.yaxis.set_major_locator(MaxNLocator(integer=True))
+    ax.legend(fontsize=8, loc="best")
     ax.grid(True, alpha=0.3)
 
 

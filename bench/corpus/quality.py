@@ -4,33 +4,37 @@ The mesh is read from a Medit .mesh file (ASCII, as format-convert and TetGen -g
 Normalized radius ratio rho = 3 * inradius / circumradius: 1 for the regular tet, 0 for a
 flat one.
 """
+import re
+
 import numpy as np
 
-MAX_TETS = 3_000_000  # beyond this, parsing text in Python costs more than the column is worth
+MAX_TETS = 5_000_000  # beyond this the column stays empty (memory and time of parsing text)
 
 
-def _section(tokens, keyword, width):
-    """(count, width) array of the numbers following a Medit keyword, or None."""
-    try:
-        at = tokens.index(keyword)
-    except ValueError:
+def _section(text, keyword, width):
+    """(count, width) array of the numbers following a Medit keyword line, or None."""
+    found = re.search(rb"^[ \t]*" + keyword + rb"[ \t]*\r?\n[ \t]*(\d+)[ \t]*\r?$", text, re.M)
+    if not found:
         return None
-    count = int(tokens[at + 1])
-    if count > MAX_TETS * 4 or at + 2 + count * width > len(tokens):
+    count = int(found.group(1))
+    if count > MAX_TETS * 4:
         return None
-    return np.array(tokens[at + 2: at + 2 + count * width], dtype=float).reshape(count, width)
+    values = np.fromstring(text[found.end():].decode("ascii", "replace"), sep=" ", count=count * width)
+    if len(values) != count * width:
+        return None
+    return values.reshape(count, width)
 
 
 def read_medit_tets(path):
     """(points, tets) from an ASCII Medit file, or None if it has no tets or is too large."""
     with open(path, "rb") as f:
         text = f.read()
-    if b"#" in text:  # comments may contain keywords ("# Set of Tetrahedra")
-        text = b"\n".join(ln.split(b"#", 1)[0] for ln in text.splitlines())
-    tokens = text.split()
-    points = _section(tokens, b"Vertices", 4)
-    tets = _section(tokens, b"Tetrahedra", 5)
-    if points is None or tets is None or len(tets) == 0 or len(tets) > MAX_TETS:
+    text = re.sub(rb"#[^\n]*", b"", text)  # comments may hold keywords ("# Set of Tetrahedra")
+    tets = _section(text, b"Tetrahedra", 5)
+    if tets is None or len(tets) == 0 or len(tets) > MAX_TETS:
+        return None
+    points = _section(text, b"Vertices", 4)
+    if points is None:
         return None
     return points[:, :3], tets[:, :4].astype(np.int64) - 1
 

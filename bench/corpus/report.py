@@ -118,7 +118,7 @@ def quality_section(order, grouped, volume, epsilon):
     if volume:
         notes.append("Radius ratio = 3 × inradius / circumradius (1 = regular tet); mesh-check does not report it "
                      "yet, so the runner computes it from the output converted to Medit (empty when that fails "
-                     "or the mesh has more than 3M tets). Watertight boundary: closed, manifold, outward, no "
+                     "or the mesh has more than 5M tets). Watertight boundary: closed, manifold, outward, no "
                      "self-intersection (exact).")
     return "\n".join(["## Output quality", "", _table(header, rows), "", " ".join(notes)])
 
@@ -133,7 +133,7 @@ def baseline_section(baseline_rows, run_models, grouped, corpus_dir):
         return ""
     keys = set(run_models)
     rows_by_tool = {}
-    for r in baseline_rows:
+    for r in sorted(baseline_rows, key=lambda r: baseline_mod.order(r["tool"])):
         if r["model"] in keys:
             rows_by_tool.setdefault(r["tool"], []).append(r)
     table = []
@@ -185,7 +185,7 @@ def per_model_section(order, grouped, baseline_rows):
         for r in rows:
             by_model.setdefault(r["model"], {"row": r})[tool] = r
     ref = {}
-    for r in baseline_rows:
+    for r in sorted(baseline_rows, key=lambda r: baseline_mod.order(r["tool"])):
         if r["model"] in by_model:
             ref.setdefault(r["tool"], {})[r["model"]] = r
     tools = [t for t in order if t in grouped]
@@ -255,7 +255,8 @@ def config_section(order, tools_meta):
 DEFINITIONS = """## Definitions
 
 - **valid**: exit 0 and an output that our `mesh-check` accepts. Tet meshes: at least one tet, no inverted
-  or degenerate tet (exact orientation on the stored coordinates), closed boundary. Repaired surfaces:
+  or degenerate tet (exact orientation on the stored coordinates), closed boundary, boundary within the
+  envelope of the input (sampled distance <= epsilon × bbox diagonal). Repaired surfaces:
   watertight (closed, manifold, consistently oriented outward, no degenerate face, no self-intersection).
   Simplified surfaces: non-empty and within the envelope.
 - **crash**: killed by a signal (segfault, abort). **error**: non-zero exit. **timeout**: still running

@@ -55,7 +55,11 @@ class ResultStore:
 
     def append(self, row):
         line = json.dumps(_json_safe(row), allow_nan=False, default=str) + "\n"
-        with self._lock, open(self.path, "a", encoding="utf-8") as f:
-            f.write(line)
+        with self._lock, open(self.path, "a+b") as f:
+            if f.tell() > 0:
+                f.seek(-1, os.SEEK_END)
+                if f.read(1) != b"\n":
+                    line = "\n" + line  # close a line torn by an earlier kill
+            f.write(line.encode("utf-8"))
             f.flush()
             os.fsync(f.fileno())

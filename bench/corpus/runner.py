@@ -109,7 +109,7 @@ def _failure_note(status, outcome, stderr, limits):
     if status == "timeout":
         return f"killed after {limits.time_s:g} s"
     head = f"signal {outcome.signal}" if outcome.signal is not None else f"exit {outcome.returncode}"
-    return f"{head}: {execute.tail(stderr)}"
+    return f"{head}: {execute.log_summary([stderr, outcome.stdout_path])}"
 
 
 def _finish(row):
