@@ -3,6 +3,8 @@
 // the binary STL with OpenMesh's own reader for comparison.
 // Usage: io_bench [WORKDIR] [TRIANGLES]   (prints a Markdown table)
 
+#include "mesh_generators.h"
+
 #include <mr/core/openmesh_convert.h>
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
@@ -22,22 +24,13 @@ using Clock = std::chrono::steady_clock;
 
 // A closed torus grid with about `triangles` triangles (welded, manifold).
 mr::TriangleSoup torus(std::size_t triangles) {
-  const auto rings = static_cast<std::size_t>(std::sqrt(triangles));
-  const std::size_t sides = triangles / (2 * rings);
-  mr::TriangleSoup soup;
-  for (std::size_t i = 0; i < rings; ++i)
-    for (std::size_t j = 0; j < sides; ++j) {
-      const double u = 2 * M_PI * double(i) / double(rings), v = 2 * M_PI * double(j) / double(sides);
-      const double r = 3 + std::cos(v);
-      soup.positions.emplace_back(r * std::cos(u), r * std::sin(u), std::sin(v));
-    }
-  auto id = [&](std::size_t i, std::size_t j) { return mr::Index((i % rings) * sides + j % sides); };
-  for (std::size_t i = 0; i < rings; ++i)
-    for (std::size_t j = 0; j < sides; ++j) {
-      soup.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      soup.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return soup;
+  const auto rings = static_cast<int>(std::sqrt(triangles));
+  const auto sides = static_cast<int>(triangles / (2 * std::size_t(rings)));
+  return mr::test::torus_grid(rings, sides, [&](int i, int j) {
+    const double u = 2 * M_PI * i / rings, v = 2 * M_PI * j / sides;
+    const double r = 3 + std::cos(v);
+    return mr::Vec3d(r * std::cos(u), r * std::sin(u), std::sin(v));
+  });
 }
 
 // A Kuhn-subdivided n^3 grid of the unit cube: 6 n^3 positively oriented tets.

@@ -4,6 +4,8 @@
 // memory and the sampled one-sided distance output -> input of both. One
 // model per process so that the peak memory belongs to it (see simplify_bench.sh).
 
+#include "mesh_generators.h"
+
 #include <mr/check/distance.h>
 #include <mr/core/openmesh_convert.h>
 #include <mr/io/default_registry.h>
@@ -33,21 +35,12 @@ double peak_rss_mb() {
 mr::TriangleSoup torus(std::size_t faces) {
   const int nu = int(std::sqrt(double(faces)));
   const int nv = int(faces / (2 * std::size_t(nu)));
-  mr::TriangleSoup soup;
-  for (int j = 0; j < nv; ++j)
-    for (int i = 0; i < nu; ++i) {
-      const double u = 2 * std::numbers::pi * i / nu, v = 2 * std::numbers::pi * j / nv;
-      const double r = 0.3 + 0.01 * std::sin(7 * u) * std::cos(5 * v);
-      soup.positions.emplace_back((1 + r * std::cos(v)) * std::cos(u), (1 + r * std::cos(v)) * std::sin(u),
-                                  r * std::sin(v));
-    }
-  auto at = [&](int i, int j) { return mr::Index((j % nv) * nu + (i % nu)); };
-  for (int j = 0; j < nv; ++j)
-    for (int i = 0; i < nu; ++i) {
-      soup.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-      soup.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-    }
-  return soup;
+  return mr::test::torus_grid(nu, nv, [&](int i, int j) {
+    const double u = 2 * std::numbers::pi * i / nu, v = 2 * std::numbers::pi * j / nv;
+    const double r = 0.3 + 0.01 * std::sin(7 * u) * std::cos(5 * v);
+    return mr::Vec3d((1 + r * std::cos(v)) * std::cos(u), (1 + r * std::cos(v)) * std::sin(u),
+                     r * std::sin(v));
+  });
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {

@@ -2,6 +2,8 @@
 // and envelope triangle checks per second. CGAL stays in this file only.
 //   spatial_bench --benchmark_filter=Build
 
+#include "mesh_generators.h"
+
 #include <mr/envelope/envelope.h>
 #include <mr/spatial/aabb_tree.h>
 
@@ -30,24 +32,13 @@ constexpr int kQueries = 100000;
 
 // A torus with bumps, nu * nv * 2 triangles, bounding box diagonal about 4.
 mr::TriangleSoup bumpy_torus(int nu, int nv) {
-  mr::TriangleSoup soup;
   const double pi = std::acos(-1.0);
-  for (int i = 0; i < nu; ++i) {
-    for (int j = 0; j < nv; ++j) {
-      const double u = 2 * pi * i / nu, v = 2 * pi * j / nv;
-      const double r = 0.4 * (1 + 0.05 * std::sin(7 * u) * std::sin(5 * v));
-      soup.positions.emplace_back((1 + r * std::cos(v)) * std::cos(u), (1 + r * std::cos(v)) * std::sin(u),
-                                  r * std::sin(v));
-    }
-  }
-  const auto at = [&](int i, int j) { return static_cast<mr::Index>((i % nu) * nv + (j % nv)); };
-  for (int i = 0; i < nu; ++i) {
-    for (int j = 0; j < nv; ++j) {
-      soup.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-      soup.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-    }
-  }
-  return soup;
+  return mr::test::torus_grid(nu, nv, [&](int i, int j) {
+    const double u = 2 * pi * i / nu, v = 2 * pi * j / nv;
+    const double r = 0.4 * (1 + 0.05 * std::sin(7 * u) * std::sin(5 * v));
+    return mr::Vec3d((1 + r * std::cos(v)) * std::cos(u), (1 + r * std::cos(v)) * std::sin(u),
+                     r * std::sin(v));
+  });
 }
 
 const mr::TriangleSoup& torus(std::int64_t faces) {

@@ -1,13 +1,18 @@
+#include "file_checks.h"
 #include "test_support.h"
 
 #include <mr/core/errors.h>
 #include <mr/io/atomic_file.h>
 #include <mr/io/file_bytes.h>
 #include <mr/io/mesh_io.h>
+#include <mr/io/output_file.h>
+#include <mr/io/text_cursor.h>
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 
 using namespace mr;
 
@@ -93,4 +98,94 @@ TEST_CASE("byte reader refuses counts larger than the data", "[io]") {
   reader.skip(12, "rest");
   CHECK(reader.at_end());
   CHECK_THROWS_AS(reader.read<char>("one more"), InputError);
+}
+
+TEST_CASE("output file writes shortest exact numbers and little-endian values", "[io][output_file]") {
+  test::TempDir dir("io_output");
+  io::OutputFile out(dir / "a.bin");
+  out << "x " << 0.1 << ' ' << 1.0 / 3.0 << ' ' << 0.1f << ' ' << -2e-300 << ' ' << std::int64_t{-42} << ' '
+      << 7 << ' ' << std::uint32_t{4000000000u} << '\n';
+  out.write_le(std::uint32_t{0x01020304});
+  out.write_native(std::int16_t{-2});
+  const std::string big(3 << 20, 'b');  // larger than the buffer: written directly, in order
+  out.write_raw(big.data(), big.size());
+  out << "end";
+  out.close();
+  const std::string text = test::read_text(dir / "a.bin");
+  const std::string line = "x 0.1 0.3333333333333333 0.1 -2e-300 -42 7 4000000000\n";
+  REQUIRE(text.size() == line.size() + 4 + 2 + big.size() + 3);
+  CHECK(text.substr(0, line.size()) == line);
+  CHECK(text.substr(line.size(), 4) == std::string("\x04\x03\x02\x01", 4));
+  CHECK(text.substr(line.size() + 6, big.size()) == big);
+  CHECK(text.ends_with("bend"));
+}
+
+TEST_CASE("output file keeps the order of small writes across buffer flushes", "[io][output_file]") {
+  test::TempDir dir("io_output_flush");
+  io::OutputFile out(dir / "n.txt");
+  std::string expected;
+  for (std::int64_t i = 0; i < 300000; ++i) {  // about 2 MB: several flushes
+    out << i << ' ';
+    out.write_le(std::uint16_t{0x0a41});
+    expected += std::to_string(i) + " A\n";
+  }
+  out.close();
+  CHECK(test::read_text(dir / "n.txt") == expected);
+}
+
+TEST_CASE("output file failures are RunErrors naming the file", "[io][output_file]") {
+  CHECK_THROWS_WITH(io::OutputFile("/nonexistent-dir/x.off"), Catch::Contains("/nonexistent-dir/x.off"));
+  CHECK_THROWS_AS(io::write_file_bytes("/nonexistent-dir/y.drc", "abc"), RunError);
+  if (!std::filesystem::exists("/dev/full")) return;
+  io::OutputFile full("/dev/full");
+  full << "some text";
+  CHECK_THROWS_WITH(full.close(), Catch::Contains("/dev/full"));
+}
+
+TEST_CASE("text cursor reads lines and tokens, naming file and line on failure", "[io][text_cursor]") {
+  const std::string text = "# head\n\n  1 +2.5 x  \r\nlast 99999999999999999999";
+  io::TextCursor lines("t.txt", text);
+  std::string_view line;
+  REQUIRE(lines.next_content_line(line, '#'));
+  CHECK(line == "1 +2.5 x");
+  io::Tokens tokens(line);
+  CHECK(lines.integer(tokens, "count") == 1);
+  CHECK(lines.number(tokens, "value") == 2.5);
+  CHECK_THROWS_WITH(lines.number(tokens, "value"),
+                    Catch::Contains("t.txt") && Catch::Contains("line 3") &&
+                        Catch::Contains("expected a number for value, found 'x'"));
+  CHECK_THROWS_WITH(lines.number(tokens, "value"), Catch::Contains("missing value"));
+  REQUIRE(lines.next_line(line));
+  CHECK(line == "last 99999999999999999999");
+  io::Tokens last(line);
+  last.next();
+  CHECK_THROWS_WITH(lines.integer(last, "count"),
+                    Catch::Contains("line 4") && Catch::Contains("out of range"));
+  CHECK_FALSE(lines.next_line(line));
+
+  io::TextCursor cursor("t.txt", text, '#');
+  CHECK(cursor.unsigned_integer("count") == 1);
+  CHECK(cursor.real("value") == 2.5);
+  CHECK_THROWS_WITH(cursor.int32("tag"), Catch::Contains("line 3") && Catch::Contains("found 'x'"));
+  CHECK_THROWS_WITH(cursor.expect("first"), Catch::Contains("line 4") && Catch::Contains("found 'last'"));
+  CHECK_THROWS_WITH(cursor.signed_integer("n"), Catch::Contains("n '99999999999999999999' is out of range"));
+  CHECK(cursor.at_end());
+  CHECK_THROWS_WITH(cursor.token("node"), Catch::Contains("unexpected end of file while reading node"));
+}
+
+TEST_CASE("text cursor never reads past the end and checks counts before allocation", "[io][text_cursor]") {
+  const std::string text = "$Nodes\n2147483648\n\x01\x02\x03";
+  io::TextCursor cursor("n.msh", text);
+  cursor.expect("$Nodes");
+  const std::uint64_t count = cursor.unsigned_integer("node count");
+  cursor.skip_line();
+  CHECK_THROWS_WITH(cursor.require(count, 4, "$Nodes"),
+                    Catch::Contains("n.msh") && Catch::Contains("declares 2147483648"));
+  CHECK_NOTHROW(cursor.require(1, 3, "$Nodes"));
+  CHECK_THROWS_AS(cursor.raw<std::uint32_t>("node"), InputError);
+  CHECK(cursor.raw<std::uint16_t>("node") == 0x0201);
+  CHECK_THROWS_AS(cursor.take(2, "node"), InputError);
+  CHECK(cursor.remaining() == 1);
+  CHECK(std::isinf(io::TextCursor("big.msh", "1e999").real("x")));  // the I/O core rejects it later
+  CHECK(io::quoted(std::string(50, '\x01')) == "'" + std::string(40, '?') + "...'");
 }

@@ -2,6 +2,7 @@
 // format variants the readers accept (tristrips, endianness, OBJ index forms,
 // OFF headers). Files are generated in code.
 
+#include "file_checks.h"
 #include "test_support.h"
 
 #include <mr/core/errors.h>
@@ -12,7 +13,6 @@
 
 #include <bit>
 #include <cstring>
-#include <fstream>
 
 using namespace mr;
 
@@ -25,14 +25,14 @@ io::Registry plugin_registry() {
 }
 
 TriangleSoup round_trip(const TriangleSoup& soup, const test::TempDir& dir, const std::string& file, bool binary = true) {
-  const io::Registry registry = plugin_registry();
   io::WriteOptions options;
   options.binary = binary;
-  io::write_surface(registry, soup, dir / file, options);
-  return io::read_surface(registry, dir / file);
+  return test::round_trip(plugin_registry(), soup, dir / file, options);
 }
 
-TriangleSoup read(const std::filesystem::path& path) { return io::read_surface(plugin_registry(), path); }
+TriangleSoup read_soup(const std::filesystem::path& path) {
+  return io::read_surface(plugin_registry(), path);
+}
 
 // Same triangles, corner by corner, with positions equal (exactly, or after rounding to float).
 void check_same_corners(const TriangleSoup& read, const TriangleSoup& original, bool float_precision) {
@@ -170,8 +170,7 @@ TEST_CASE("binary STL has computed facet normals and a header that does not star
   TriangleSoup soup = test::cube_soup();
   soup.triangles.push_back({0, 1, 1});  // degenerate: zero normal
   io::write_surface(plugin_registry(), soup, dir / "n.stl");
-  std::ifstream in(dir / "n.stl", std::ios::binary);
-  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::vector<char> bytes = test::read_bytes(dir / "n.stl");
   REQUIRE(bytes.size() == 84 + 50 * 13);
   CHECK(std::string(bytes.data(), 5) != "solid");
   auto normal_of = [&](std::size_t facet) {
@@ -188,20 +187,20 @@ TEST_CASE("a binary STL whose header starts with solid is read as binary", "[ope
   test::TempDir dir("om_stl_solid");
   const std::vector<std::array<float, 9>> facets = {{0, 0, 0, 1, 0, 0, 0, 1, 0}, {1, 0, 0, 1, 1, 0, 0, 1, 0}};
   test::write_bytes(dir / "solid.stl", binary_stl("solid fooled you", facets));
-  const TriangleSoup soup = read(dir / "solid.stl");
+  const TriangleSoup soup = read_soup(dir / "solid.stl");
   CHECK(soup.num_triangles() == 2);
   CHECK(soup.num_vertices() == 4);
   CHECK(soup.positions[3] == Vec3d(1, 1, 0));
 }
 
 TEST_CASE("ASCII STL: keywords in any case, polygon loops fanned, solids become regions", "[openmesh][stl]") {
-  test::TempDir dir("om_stl_ascii");
-  test::write_text(dir / "two.stl",
-                   "solid first\n FACET NORMAL 0 0 1\n  OUTER LOOP\n   VERTEX 0 0 0\n   VERTEX 1 0 0\n"
-                   "   VERTEX 1 1 0\n   VERTEX 0 1 0\n  ENDLOOP\n ENDFACET\nENDSOLID first\n"
-                   "solid second\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 0 1 0\nvertex 0 0 1e0\n"
-                   "endloop\nendfacet\nendsolid second\n");
-  const TriangleSoup soup = read(dir / "two.stl");
+  const TriangleSoup soup = test::read_written(
+      "two.stl",
+      "solid first\n FACET NORMAL 0 0 1\n  OUTER LOOP\n   VERTEX 0 0 0\n   VERTEX 1 0 0\n"
+      "   VERTEX 1 1 0\n   VERTEX 0 1 0\n  ENDLOOP\n ENDFACET\nENDSOLID first\n"
+      "solid second\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 0 1 0\nvertex 0 0 1e0\n"
+      "endloop\nendfacet\nendsolid second\n",
+      read_soup);
   REQUIRE(soup.num_triangles() == 3);
   CHECK(soup.num_vertices() == 5);
   CHECK(soup.face_regions == std::vector<std::int32_t>{0, 0, 1});
@@ -237,13 +236,13 @@ TEST_CASE("attributes survive OBJ, OFF and PLY", "[openmesh]") {
 }
 
 TEST_CASE("OBJ: polygons, negative indices, v/vt/vn forms, continuations, groups", "[openmesh][obj]") {
-  test::TempDir dir("om_obj");
-  test::write_text(dir / "a.obj",
-                   "# quad, then a triangle with relative indices\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
-                   "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n"
-                   "g plate\nf 1/1/1 2/2/1 \\\n 3/3/1 4/4/1\n"
-                   "v 0 0 1\ng pin\nf -1 -5//-1 -4\nf 1//1 2//1 5//1\nl 1 2\n");
-  const TriangleSoup soup = read(dir / "a.obj");
+  const TriangleSoup soup =
+      test::read_written("a.obj",
+                         "# quad, then a triangle with relative indices\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                         "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n"
+                         "g plate\nf 1/1/1 2/2/1 \\\n 3/3/1 4/4/1\n"
+                         "v 0 0 1\ng pin\nf -1 -5//-1 -4\nf 1//1 2//1 5//1\nl 1 2\n",
+                         read_soup);
   REQUIRE(soup.num_vertices() == 5);
   REQUIRE(soup.triangles == std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}, {4, 0, 1}, {0, 1, 4}});
   CHECK(soup.region_names == std::vector<std::string>{"plate", "pin"});
@@ -256,10 +255,10 @@ TEST_CASE("OBJ: polygons, negative indices, v/vt/vn forms, continuations, groups
 }
 
 TEST_CASE("OBJ: corners of one position with different uvs average them", "[openmesh][obj]") {
-  test::TempDir dir("om_obj_seam");
-  test::write_text(dir / "seam.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 0.5 0\n"
-                                     "f 1/1 2/2 3/3\nf 1/4 3/3 2/2\n");
-  const TriangleSoup soup = read(dir / "seam.obj");
+  const TriangleSoup soup = test::read_written("seam.obj",
+                                               "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 0.5 0\n"
+                                               "f 1/1 2/2 3/3\nf 1/4 3/3 2/2\n",
+                                               read_soup);
   REQUIRE(soup.num_vertices() == 3);
   CHECK(soup.uvs[0] == Vec2f(0.25f, 0));
 }
@@ -269,13 +268,13 @@ TEST_CASE("OFF: COFF colours, NOFF normals, counts glued to the keyword, comment
   SECTION("counts glued to the keyword and face colours") {
     test::write_text(dir / "w.off", "\t  OFF4 2 5 # counts\n0 0 0\n1 0 0\n# comment\n1 1 0\n0 1 0\n"
                                     "4 0 1 2 3 1.0 0.0 0.0 0.75\n3 0 2 3\n");
-    const TriangleSoup soup = read(dir / "w.off");
+    const TriangleSoup soup = read_soup(dir / "w.off");
     CHECK(soup.num_vertices() == 4);
     CHECK(soup.triangles == std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}, {0, 2, 3}});
   }
   SECTION("COFF with byte colours") {
     test::write_text(dir / "c.off", "COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0\n0 1 0 0 0 255 51\n3 0 1 2\n");
-    const TriangleSoup soup = read(dir / "c.off");
+    const TriangleSoup soup = read_soup(dir / "c.off");
     REQUIRE(soup.has_colors());
     CHECK(soup.colors[0] == Vec4f(1, 0, 0, 1));
     CHECK(soup.colors[1] == Vec4f(0, 1, 0, 1));
@@ -283,7 +282,7 @@ TEST_CASE("OFF: COFF colours, NOFF normals, counts glued to the keyword, comment
   }
   SECTION("NOFF") {
     test::write_text(dir / "n.off", "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n");
-    const TriangleSoup soup = read(dir / "n.off");
+    const TriangleSoup soup = read_soup(dir / "n.off");
     REQUIRE(soup.has_normals());
     CHECK(soup.normals[2] == Vec3f(0, 0, 1));
   }
@@ -299,7 +298,7 @@ TEST_CASE("PLY tristrips become triangles with alternating orientation, ASCII an
     text += std::to_string(strip.size());
     for (int i : strip) text += " " + std::to_string(i);
     test::write_text(dir / "s.ply", text + "\n");
-    const TriangleSoup soup = read(dir / "s.ply");
+    const TriangleSoup soup = read_soup(dir / "s.ply");
     REQUIRE(soup.num_triangles() == 4);
     CHECK(soup.triangles[0] == Triangle{0, 1, 2});
     CHECK(soup.triangles[1] == Triangle{2, 1, 3});
@@ -316,7 +315,7 @@ TEST_CASE("PLY tristrips become triangles with alternating orientation, ASCII an
     append_big_endian(bytes, static_cast<std::int32_t>(strip.size()));
     for (std::int32_t i : strip) append_big_endian(bytes, i);
     test::write_bytes(dir / "s.ply", bytes);
-    const TriangleSoup soup = read(dir / "s.ply");
+    const TriangleSoup soup = read_soup(dir / "s.ply");
     REQUIRE(soup.num_triangles() == 4);
     CHECK(soup.positions[5] == Vec3d(1, 2, 0.1));
     check_all_facing_up(soup);
@@ -324,16 +323,16 @@ TEST_CASE("PLY tristrips become triangles with alternating orientation, ASCII an
 }
 
 TEST_CASE("PLY: quads fanned, float colours, u/v names and unknown properties skipped", "[openmesh][ply]") {
-  test::TempDir dir("om_ply_ascii");
-  test::write_text(dir / "q.ply",
-                   "ply\nformat ascii 1.0\ncomment hello\nelement vertex 4\nproperty float x\nproperty float y\n"
-                   "property float z\nproperty float confidence\nproperty float u\nproperty float v\n"
-                   "property float red\nproperty float green\nproperty float blue\n"
-                   "element face 1\nproperty list uchar int vertex_indices\nproperty uchar red\n"
-                   "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n"
-                   "0 0 0 1 0 0 1 0 0\n1 0 0 1 1 0 0 1 0\n1 1 0 1 1 1 0 0 1\n0 1 0 1 0 1 0.5 0.5 0.5\n"
-                   "4 0 1 2 3 200\n0 1\n");
-  const TriangleSoup soup = read(dir / "q.ply");
+  const TriangleSoup soup = test::read_written(
+      "q.ply",
+      "ply\nformat ascii 1.0\ncomment hello\nelement vertex 4\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float confidence\nproperty float u\nproperty float v\n"
+      "property float red\nproperty float green\nproperty float blue\n"
+      "element face 1\nproperty list uchar int vertex_indices\nproperty uchar red\n"
+      "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n"
+      "0 0 0 1 0 0 1 0 0\n1 0 0 1 1 0 0 1 0\n1 1 0 1 1 1 0 0 1\n0 1 0 1 0 1 0.5 0.5 0.5\n"
+      "4 0 1 2 3 200\n0 1\n",
+      read_soup);
   CHECK(soup.triangles == std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}});
   REQUIRE(soup.has_uvs());
   CHECK(soup.uvs[2] == Vec2f(1, 1));

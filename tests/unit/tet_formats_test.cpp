@@ -3,6 +3,7 @@
 // sparse 64-bit node tags, parametric nodes, element types to skip,
 // second-order tets, physical names, comments and unused Medit keywords.
 
+#include "file_checks.h"
 #include "test_support.h"
 
 #include <mr/core/errors.h>
@@ -13,7 +14,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 
 using namespace mr;
@@ -68,12 +68,10 @@ const Variant kVariants[] = {{"a.msh", false, "4.1"}, {"b.msh", true, "4.1"}, {"
                              {"d.msh", true, "2.2"},  {"e.mesh", false, "4.1"}};
 
 TetMesh round_trip(const TetMesh& mesh, const test::TempDir& dir, const Variant& variant) {
-  const io::Registry registry = io::make_default_registry();
   io::WriteOptions options;
   options.binary = variant.binary;
   options.msh_version = variant.msh_version;
-  io::write_volume(registry, mesh, dir / variant.file, options);
-  return io::read_volume(registry, dir / variant.file);
+  return test::round_trip(io::make_default_registry(), mesh, dir / variant.file, options);
 }
 
 void check_same(const TetMesh& a, const TetMesh& b) {
@@ -90,7 +88,7 @@ double orient(const TetMesh& mesh, const Tet& t) {
   return (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a).dot(mesh.positions[t[3]] - a);
 }
 
-TetMesh read(const std::filesystem::path& path) { return io::read_volume(io::make_default_registry(), path); }
+TetMesh read_mesh(const std::filesystem::path& path) { return io::read_volume(io::make_default_registry(), path); }
 
 }  // namespace
 
@@ -141,12 +139,11 @@ TEST_CASE("MSH 4.1 ASCII output has entities and full precision", "[tet_io]") {
   io::WriteOptions options;
   options.binary = false;
   io::write_volume(registry, cube, dir / "c.msh", options);
-  std::ifstream in(dir / "c.msh");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = test::read_text(dir / "c.msh");
   CHECK(text.starts_with("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n0 0 0 6\n"));
   CHECK(text.find("0.1 0.3333333333333333 -2e-300\n") != std::string::npos);
   CHECK(text.find("3 4 4 1\n") != std::string::npos);  // volume entity 4 holds one tet of type 4
-  CHECK(read(dir / "c.msh").positions[0] == cube.positions[0]);
+  CHECK(read_mesh(dir / "c.msh").positions[0] == cube.positions[0]);
 }
 
 TEST_CASE("extreme doubles survive every text writer exactly", "[tet_io]") {
@@ -161,28 +158,27 @@ TEST_CASE("extreme doubles survive every text writer exactly", "[tet_io]") {
 }
 
 TEST_CASE("MSH 4.1 reader: sparse 64-bit tags, parametric nodes, skipped types, tet10", "[tet_io]") {
-  test::TempDir dir("tet_msh41");
-  test::write_text(dir / "s.msh",
-                   "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
-                   "$PhysicalNames\n1\n3 9 \"solid\"\n$EndPhysicalNames\n"
-                   "$Entities\n1 0 0 2\n"
-                   "5 0 0 0 0\n"
-                   "1 0 0 0 1 1 1 1 9 0\n"
-                   "2 0 0 0 1 1 1 0 0\n"
-                   "$EndEntities\n"
-                   "$Nodes\n2 5 1 1000000000010\n"
-                   "0 5 0 1\n1000000000010\n0 0 0\n"
-                   "3 1 1 4\n7\n1000000000003\n3\n42\n"
-                   "1 0 0 0.1 0.2 0.3\n0 1 0 0 0 0\n0 0 1 0 0 0\n0.5 0.5 0.5 0 0 0\n"
-                   "$EndNodes\n"
-                   "$Comments\nanything $Nodes here\n$EndComments\n"
-                   "$Elements\n4 4 1 4\n"
-                   "0 5 15 1\n1 1000000000010\n"
-                   "1 1 1 1\n2 1000000000010 7\n"
-                   "3 1 4 1\n3 1000000000010 7 1000000000003 3\n"
-                   "3 2 11 1\n4 1000000000010 1000000000003 7 3 42 42 42 42 42 42\n"
-                   "$EndElements\n");
-  const TetMesh mesh = read(dir / "s.msh");
+  const TetMesh mesh = test::read_written("s.msh",
+                                          "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+                                          "$PhysicalNames\n1\n3 9 \"solid\"\n$EndPhysicalNames\n"
+                                          "$Entities\n1 0 0 2\n"
+                                          "5 0 0 0 0\n"
+                                          "1 0 0 0 1 1 1 1 9 0\n"
+                                          "2 0 0 0 1 1 1 0 0\n"
+                                          "$EndEntities\n"
+                                          "$Nodes\n2 5 1 1000000000010\n"
+                                          "0 5 0 1\n1000000000010\n0 0 0\n"
+                                          "3 1 1 4\n7\n1000000000003\n3\n42\n"
+                                          "1 0 0 0.1 0.2 0.3\n0 1 0 0 0 0\n0 0 1 0 0 0\n0.5 0.5 0.5 0 0 0\n"
+                                          "$EndNodes\n"
+                                          "$Comments\nanything $Nodes here\n$EndComments\n"
+                                          "$Elements\n4 4 1 4\n"
+                                          "0 5 15 1\n1 1000000000010\n"
+                                          "1 1 1 1\n2 1000000000010 7\n"
+                                          "3 1 4 1\n3 1000000000010 7 1000000000003 3\n"
+                                          "3 2 11 1\n4 1000000000010 1000000000003 7 3 42 42 42 42 42 42\n"
+                                          "$EndElements\n",
+                                          read_mesh);
   REQUIRE(mesh.positions.size() == 5);
   CHECK(mesh.positions[1] == Vec3d(1, 0, 0));
   REQUIRE(mesh.tets.size() == 2);
@@ -194,18 +190,17 @@ TEST_CASE("MSH 4.1 reader: sparse 64-bit tags, parametric nodes, skipped types, 
 }
 
 TEST_CASE("MSH 2.2 reader: ASCII with skipped elements and physical 0", "[tet_io]") {
-  test::TempDir dir("tet_msh22");
-  test::write_text(dir / "s.msh",
-                   "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
-                   "$Nodes\n4\n10 0 0 0\n20 1 0 0\n30 0 1 0\n40 0 0 1\n$EndNodes\n"
-                   "$Elements\n5\n"
-                   "1 15 2 0 1 10\n"
-                   "2 1 2 0 1 10 20\n"
-                   "3 2 2 6 2 10 30 20\n"
-                   "4 4 2 0 8 10 20 30 40\n"
-                   "5 4 3 11 8 1 10 20 30 40\n"
-                   "$EndElements\n");
-  const TetMesh mesh = read(dir / "s.msh");
+  const TetMesh mesh = test::read_written("s.msh",
+                                          "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+                                          "$Nodes\n4\n10 0 0 0\n20 1 0 0\n30 0 1 0\n40 0 0 1\n$EndNodes\n"
+                                          "$Elements\n5\n"
+                                          "1 15 2 0 1 10\n"
+                                          "2 1 2 0 1 10 20\n"
+                                          "3 2 2 6 2 10 30 20\n"
+                                          "4 4 2 0 8 10 20 30 40\n"
+                                          "5 4 3 11 8 1 10 20 30 40\n"
+                                          "$EndElements\n",
+                                          read_mesh);
   CHECK(mesh.tets == std::vector<Tet>{{0, 1, 2, 3}, {0, 1, 2, 3}});
   CHECK(mesh.tet_labels == std::vector<std::int32_t>{8, 11});
   CHECK(mesh.faces == std::vector<Triangle>{{0, 2, 1}});
@@ -258,7 +253,7 @@ TEST_CASE("MSH 2.2 binary reader skips element blocks and handles byte order", "
   for (bool swap : {false, true}) {
     INFO("swapped: " << swap);
     test::write_bytes(dir / "b.msh", msh2_binary_file(swap));
-    const TetMesh mesh = read(dir / "b.msh");
+    const TetMesh mesh = read_mesh(dir / "b.msh");
     CHECK(mesh.positions[3] == Vec3d(0, 0, 1));
     CHECK(mesh.tets == std::vector<Tet>{{0, 1, 2, 3}, {0, 2, 1, 3}});
     CHECK(mesh.tet_labels == std::vector<std::int32_t>{4, 13});
@@ -266,14 +261,13 @@ TEST_CASE("MSH 2.2 binary reader skips element blocks and handles byte order", "
 }
 
 TEST_CASE("Medit reader: comments, skipped keywords, 1-based indices", "[tet_io]") {
-  test::TempDir dir("tet_medit");
-  test::write_text(dir / "m.mesh",
-                   "# written by hand\nMeshVersionFormatted 2\nDimension\n3\n"
-                   "Vertices # four of them\n4\n0 0 0 1\n1 0 0 1\n0 1 0 2\n0 0 1 2\n"
-                   "Edges\n1\n1 2 5\nCorners\n2\n1 2\nRequiredVertices 1 3\n"
-                   "Ridges\n1\n1\nTriangles\n1\n1 3 2 4\n"
-                   "Tetrahedra\n2\n1 2 3 4 7\n1 3 2 4 -3\nNormals\n1\n0 0 1\nEnd\n");
-  const TetMesh mesh = read(dir / "m.mesh");
+  const TetMesh mesh = test::read_written("m.mesh",
+                                          "# written by hand\nMeshVersionFormatted 2\nDimension\n3\n"
+                                          "Vertices # four of them\n4\n0 0 0 1\n1 0 0 1\n0 1 0 2\n0 0 1 2\n"
+                                          "Edges\n1\n1 2 5\nCorners\n2\n1 2\nRequiredVertices 1 3\n"
+                                          "Ridges\n1\n1\nTriangles\n1\n1 3 2 4\n"
+                                          "Tetrahedra\n2\n1 2 3 4 7\n1 3 2 4 -3\nNormals\n1\n0 0 1\nEnd\n",
+                                          read_mesh);
   CHECK(mesh.positions.size() == 4);
   CHECK(mesh.tets == std::vector<Tet>{{0, 1, 2, 3}, {0, 2, 1, 3}});
   CHECK(mesh.tet_labels == std::vector<std::int32_t>{7, -3});
@@ -287,8 +281,7 @@ TEST_CASE("VTU output declares points, tets and labels", "[tet_io]") {
   io::WriteOptions options;
   options.binary = false;
   io::write_volume(registry, test::cube_tets(), dir / "c.vtu", options);
-  std::ifstream in(dir / "c.vtu");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = test::read_text(dir / "c.vtu");
   CHECK(text.find("NumberOfPoints=\"8\" NumberOfCells=\"6\"") != std::string::npos);
   CHECK(text.find("10\n10\n10\n10\n10\n10\n") != std::string::npos);
   CHECK(text.find("Name=\"label\"") != std::string::npos);
@@ -307,5 +300,5 @@ TEST_CASE("format-convert turns a .msh volume into its boundary surface", "[tet_
   CHECK(test::enclosed_volume(surface) == Approx(1.0));
   const test::ToolRun medit = test::run_format_convert({(dir / "cube.msh").string(), (dir / "cube.mesh").string()});
   REQUIRE(medit.exit_code == 0);
-  check_same(test::cube_tets(), read(dir / "cube.mesh"));
+  check_same(test::cube_tets(), read_mesh(dir / "cube.mesh"));
 }

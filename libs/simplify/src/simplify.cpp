@@ -34,12 +34,14 @@ DerivedTolerances derive_tolerances(const TriangleSoup& input, const SimplifyOpt
   return t;
 }
 
-SimplifyResult run(const TriangleSoup& input, const SimplifyOptions& options, const DerivedTolerances& tolerances) {
+// Simplifies `surface` inside the envelope of `reference`.
+SimplifyResult run(const TriangleSoup& surface, const TriangleSoup& reference, const SimplifyOptions& options,
+                   const DerivedTolerances& tolerances) {
   SimplifyResult result;
-  result.faces_before = input.triangles.size();
+  result.faces_before = surface.triangles.size();
   result.epsilon = tolerances.epsilon;
   auto start = std::chrono::steady_clock::now();
-  MeshState state(input, weld_identical_vertices(input), tolerances);
+  MeshState state(reference, weld_identical_vertices(surface), tolerances);
   result.kept_aside_faces = state.kept_aside_faces();
   result.locked_vertices = state.locked_vertices();
   result.seconds_setup = seconds_since(start);
@@ -60,10 +62,17 @@ SimplifyResult run(const TriangleSoup& input, const SimplifyOptions& options, co
 }  // namespace
 
 SimplifyResult simplify_in_envelope(const TriangleSoup& input, const SimplifyOptions& options) {
-  if (const std::string problem = find_soup_inconsistency(input); !problem.empty())
+  return simplify_in_envelope_of(input, input, options);
+}
+
+SimplifyResult simplify_in_envelope_of(const TriangleSoup& surface, const TriangleSoup& reference,
+                                       const SimplifyOptions& options) {
+  if (const std::string problem = find_soup_inconsistency(surface); !problem.empty())
     throw UsageError("simplify: inconsistent input soup: " + problem);
-  const DerivedTolerances tolerances = derive_tolerances(input, options);
-  if (input.triangles.empty()) {
+  if (const std::string problem = find_soup_inconsistency(reference); !problem.empty())
+    throw UsageError("simplify: inconsistent reference soup: " + problem);
+  const DerivedTolerances tolerances = derive_tolerances(reference, options);
+  if (surface.triangles.empty()) {
     SimplifyResult result;
     result.epsilon = tolerances.epsilon;
     return result;
@@ -71,7 +80,7 @@ SimplifyResult simplify_in_envelope(const TriangleSoup& input, const SimplifyOpt
   if (!(tolerances.epsilon > 0.0))
     throw UsageError("simplify: epsilon is 0 (the input has a zero-size bounding box)");
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-  return arena.execute([&] { return run(input, options, tolerances); });
+  return arena.execute([&] { return run(surface, reference, options, tolerances); });
 }
 
 }  // namespace mr::simplify

@@ -5,10 +5,8 @@
 
 #include "draco_codec_detail.h"
 
-#include <mr/core/errors.h>
 #include <mr/io/file_bytes.h>
-
-#include <fstream>
+#include <mr/io/output_file.h>
 
 namespace mr::plugins {
 namespace {
@@ -20,11 +18,7 @@ TriangleSoup read_drc(const std::filesystem::path& path, const io::ReadOptions&)
 
 void write_drc(const TriangleSoup& soup, const std::filesystem::path& path, const io::WriteOptions& options) {
   const DracoEncoded encoded = detail::encode_draco_mesh(soup, options.draco, true);
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw RunError("cannot open " + path.string() + " for writing");
-  out.write(encoded.bytes.data(), static_cast<std::streamsize>(encoded.bytes.size()));
-  out.close();
-  if (!out) throw RunError("could not write " + path.string());
+  io::write_file_bytes(path, {encoded.bytes.data(), encoded.bytes.size()});
 }
 
 }  // namespace

@@ -7,9 +7,9 @@
 #include "gltf_vertex_data.h"
 
 #include <mr/core/errors.h>
+#include <mr/io/output_file.h>
 
 #include <algorithm>
-#include <fstream>
 #include <map>
 
 namespace mr::plugins::gltf {
@@ -173,14 +173,6 @@ class DocumentBuilder {
   json materials_ = json::array();
 };
 
-void write_bytes(const std::filesystem::path& path, const char* data, std::size_t size) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw RunError("cannot open " + path.string() + " for writing");
-  out.write(data, static_cast<std::streamsize>(size));
-  out.close();
-  if (!out) throw RunError("cannot write " + path.string());
-}
-
 }  // namespace
 
 void write_gltf(const TriangleSoup& soup, const std::filesystem::path& path, const io::WriteOptions& options,
@@ -197,9 +189,9 @@ void write_gltf(const TriangleSoup& soup, const std::filesystem::path& path, con
   const std::string text = doc.dump();
   if (glb && bin.size() + text.size() > 0xFFFFFF00ull)
     throw RunError("cannot write " + path.string() + ": a GLB file must stay under 4 GB");
-  if (!glb) return write_bytes(path, text.data(), text.size());
+  if (!glb) return io::write_file_bytes(path, text);
   const std::vector<char> file = assemble_glb(text, {bin.data(), bin.size()});
-  write_bytes(path, file.data(), file.size());
+  io::write_file_bytes(path, {file.data(), file.size()});
 }
 
 }  // namespace mr::plugins::gltf

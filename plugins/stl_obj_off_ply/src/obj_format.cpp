@@ -17,9 +17,9 @@
 
 #include "formats.h"
 #include "soup_importer.h"
-#include "text_cursor.h"
 
 #include <mr/io/file_bytes.h>
+#include <mr/io/text_cursor.h>
 
 namespace mr::plugins::stl_obj_off_ply {
 namespace {
@@ -47,7 +47,7 @@ class ObjParser {
     if (!ends_with_backslash(line)) return true;
     joined_.clear();
     do {
-      const std::string_view content = trim(line);
+      const std::string_view content = io::trim(line);
       joined_.append(content.substr(0, content.size() - 1)).push_back(' ');
       if (!cursor_.next_line(line)) break;
     } while (ends_with_backslash(line));
@@ -57,12 +57,12 @@ class ObjParser {
   }
 
   static bool ends_with_backslash(std::string_view line) {
-    line = trim(line);
+    line = io::trim(line);
     return !line.empty() && line.back() == '\\';
   }
 
   void parse_line(std::string_view line) {
-    Tokens tokens(line);
+    io::Tokens tokens(line);
     const std::string_view keyword = tokens.next();
     if (keyword == "v")
       parse_vertex(tokens);
@@ -81,25 +81,25 @@ class ObjParser {
     }
   }
 
-  static std::string_view region_name(Tokens& tokens) {
-    const std::string_view name = trim(tokens.rest());
+  static std::string_view region_name(io::Tokens& tokens) {
+    const std::string_view name = io::trim(tokens.rest());
     return name.empty() ? "default" : name;
   }
 
-  Vec3d read_vector(Tokens& tokens, const char* what) {
+  Vec3d read_vector(io::Tokens& tokens, const char* what) {
     Vec3d v;
     for (int k = 0; k < 3; ++k) v[k] = cursor_.number(tokens, what);
     if (!v.allFinite()) cursor_.fail(std::string(what) + " is not finite (NaN or Inf)");
     return v;
   }
 
-  void parse_uv(Tokens& tokens) {
+  void parse_uv(io::Tokens& tokens) {
     const double u = cursor_.number(tokens, "texture coordinate");
     const double v = tokens.empty() ? 0.0 : cursor_.number(tokens, "texture coordinate");
     uvs_.emplace_back(static_cast<float>(u), static_cast<float>(v));
   }
 
-  void parse_vertex(Tokens& tokens) {
+  void parse_vertex(io::Tokens& tokens) {
     positions_.push_back(read_vector(tokens, "vertex coordinate"));
     double extra[4];
     int count = 0;
@@ -112,7 +112,7 @@ class ObjParser {
 
   std::int64_t resolve(std::string_view token, std::size_t defined, const char* what) {
     std::int64_t index = 0;
-    if (!parse_integer(token, index)) cursor_.fail(quoted(token) + " is not a " + what + " index");
+    if (!io::parse_integer(token, index)) cursor_.fail(io::quoted(token) + " is not a " + what + " index");
     if (index == 0) cursor_.fail(std::string(what) + " index 0 (OBJ indices start at 1)");
     const std::int64_t resolved = index > 0 ? index - 1 : static_cast<std::int64_t>(defined) + index;
     if (resolved < 0 || resolved >= static_cast<std::int64_t>(defined))
@@ -134,7 +134,7 @@ class ObjParser {
     return corner;
   }
 
-  void parse_face(Tokens& tokens) {
+  void parse_face(io::Tokens& tokens) {
     polygon_.clear();
     for (std::string_view token = tokens.next(); !token.empty(); token = tokens.next()) {
       const Corner corner = parse_corner(token);
@@ -188,7 +188,7 @@ class ObjParser {
     return soup;
   }
 
-  TextCursor cursor_;
+  io::TextCursor cursor_;
   std::string joined_;
   std::vector<Vec3d> positions_;
   std::vector<Vec2f> uvs_;

@@ -4,7 +4,8 @@
 // order, so the triangle order is kept.
 
 #include "formats.h"
-#include "output_file.h"
+
+#include <mr/io/output_file.h>
 
 namespace mr::plugins::stl_obj_off_ply {
 namespace {
@@ -19,7 +20,7 @@ std::string region_name(const TriangleSoup& soup, std::int32_t region) {
   return "region_" + std::to_string(region);
 }
 
-void write_vertices(const TriangleSoup& soup, OutputFile& out) {
+void write_vertices(const TriangleSoup& soup, io::OutputFile& out) {
   for (std::size_t v = 0; v < soup.num_vertices(); ++v) {
     const Vec3d& p = soup.positions[v];
     out << "v " << p.x() << ' ' << p.y() << ' ' << p.z();
@@ -30,7 +31,7 @@ void write_vertices(const TriangleSoup& soup, OutputFile& out) {
   for (const Vec3f& n : soup.normals) out << "vn " << n.x() << ' ' << n.y() << ' ' << n.z() << '\n';
 }
 
-void write_corner(const TriangleSoup& soup, OutputFile& out, Index v) {
+void write_corner(const TriangleSoup& soup, io::OutputFile& out, Index v) {
   const std::int64_t one_based = std::int64_t{v} + 1;
   out << ' ' << one_based;
   if (soup.has_uvs() && soup.has_normals())
@@ -44,7 +45,7 @@ void write_corner(const TriangleSoup& soup, OutputFile& out, Index v) {
 }  // namespace
 
 void write_obj(const TriangleSoup& soup, const std::filesystem::path& path) {
-  OutputFile out(path);
+  io::OutputFile out(path);
   out << "# written by meshrepair\n";
   write_vertices(soup, out);
   std::int32_t current_region = -1;

@@ -13,11 +13,11 @@
 // else floats 0..1. Binary OFF and 4D/nD variants are rejected.
 
 #include "formats.h"
-#include "output_file.h"
 #include "soup_importer.h"
-#include "text_cursor.h"
 
 #include <mr/io/file_bytes.h>
+#include <mr/io/output_file.h>
+#include <mr/io/text_cursor.h>
 
 #include <algorithm>
 
@@ -29,7 +29,7 @@ struct OffHeader {
   std::int64_t vertices = 0, faces = 0;
 };
 
-std::string_view strip_comment(std::string_view line) { return trim(line.substr(0, line.find('#'))); }
+std::string_view strip_comment(std::string_view line) { return io::trim(line.substr(0, line.find('#'))); }
 
 class OffParser {
  public:
@@ -62,7 +62,7 @@ class OffParser {
   }
 
   void parse_header() {
-    Tokens tokens(content_line("the OFF header"));
+    io::Tokens tokens(content_line("the OFF header"));
     const std::string_view keyword = tokens.next();
     const std::size_t off = keyword.find("OFF");
     if (off == std::string_view::npos) cursor_.fail("not an OFF file: the first word is '" + std::string(keyword.substr(0, 40)) + "'");
@@ -76,12 +76,14 @@ class OffParser {
     const std::string_view glued = keyword.substr(off + 3);
     if (!glued.empty()) {
       std::int64_t count = 0;
-      if (!parse_integer(glued, count)) cursor_.fail("unsupported OFF keyword '" + std::string(keyword) + "'");
+      if (!io::parse_integer(glued, count))
+        cursor_.fail("unsupported OFF keyword '" + std::string(keyword) + "'");
       counts.push_back(count);
     }
-    if (!tokens.empty() && iequals(Tokens(tokens.rest()).next(), "BINARY")) cursor_.fail("binary OFF is not supported");
+    if (!tokens.empty() && io::iequals(io::Tokens(tokens.rest()).next(), "BINARY"))
+      cursor_.fail("binary OFF is not supported");
     while (counts.size() < 2) {
-      if (tokens.empty()) tokens = Tokens(content_line("the vertex and face counts"));
+      if (tokens.empty()) tokens = io::Tokens(content_line("the vertex and face counts"));
       counts.push_back(cursor_.integer(tokens, "vertex or face count"));
     }
     header_.vertices = counts[0];
@@ -91,7 +93,7 @@ class OffParser {
   }
 
   void parse_vertex() {
-    Tokens tokens(content_line("all vertices are read"));
+    io::Tokens tokens(content_line("all vertices are read"));
     Vec3d p;
     for (int k = 0; k < 3; ++k) p[k] = cursor_.number(tokens, "vertex coordinate");
     if (!p.allFinite()) cursor_.fail("vertex coordinate is not finite (NaN or Inf)");
@@ -114,7 +116,7 @@ class OffParser {
   }
 
   double number(std::string_view token, const char* what) const {
-    Tokens single(token);
+    io::Tokens single(token);
     return cursor_.number(single, what);
   }
 
@@ -135,7 +137,7 @@ class OffParser {
   }
 
   void parse_face() {
-    Tokens tokens(content_line("all faces are read"));
+    io::Tokens tokens(content_line("all faces are read"));
     const std::int64_t count = cursor_.integer(tokens, "face vertex count");
     if (count < 3) cursor_.fail("face with " + std::to_string(count) + " vertices, needs at least 3");
     if (count > static_cast<std::int64_t>(tokens.rest().size())) cursor_.fail("face with fewer indices than its count");
@@ -150,7 +152,7 @@ class OffParser {
     append_fan(soup_.triangles, polygon_);
   }
 
-  TextCursor cursor_;
+  io::TextCursor cursor_;
   OffHeader header_;
   TriangleSoup soup_;
   std::vector<Index> polygon_;
@@ -164,9 +166,8 @@ TriangleSoup read_off(const std::filesystem::path& path) {
 }
 
 void write_off(const TriangleSoup& soup, const std::filesystem::path& path) {
-  OutputFile out(path);
+  io::OutputFile out(path);
   out << (soup.has_uvs() ? "ST" : "") << (soup.has_colors() ? "C" : "") << (soup.has_normals() ? "N" : "") << "OFF\n";
-  out << "# written by meshrepair\n";
   out << static_cast<std::int64_t>(soup.num_vertices()) << ' ' << static_cast<std::int64_t>(soup.num_triangles())
       << " 0\n";
   for (std::size_t v = 0; v < soup.num_vertices(); ++v) {

@@ -1,5 +1,6 @@
 #include "ply_header.h"
-#include "text_cursor.h"
+
+#include <mr/io/text_cursor.h>
 
 #include <array>
 #include <utility>
@@ -18,13 +19,13 @@ constexpr std::array<std::pair<const char*, PlyType>, 16> kTypeNames{{
 
 constexpr std::size_t kMaxRegionId = 1 << 20;
 
-PlyType parse_type(const TextCursor& cursor, std::string_view name) {
+PlyType parse_type(const io::TextCursor& cursor, std::string_view name) {
   for (const auto& [text, type] : kTypeNames)
     if (name == text) return type;
   cursor.fail("unknown PLY property type '" + std::string(name) + "'");
 }
 
-PlyEncoding parse_format(const TextCursor& cursor, Tokens& tokens) {
+PlyEncoding parse_format(const io::TextCursor& cursor, io::Tokens& tokens) {
   const std::string_view format = tokens.next();
   if (format == "ascii") return PlyEncoding::ascii;
   if (format == "binary_little_endian") return PlyEncoding::binary_little_endian;
@@ -32,7 +33,7 @@ PlyEncoding parse_format(const TextCursor& cursor, Tokens& tokens) {
   cursor.fail("unknown PLY format '" + std::string(format) + "'");
 }
 
-PlyProperty parse_property(const TextCursor& cursor, Tokens& tokens) {
+PlyProperty parse_property(const io::TextCursor& cursor, io::Tokens& tokens) {
   PlyProperty property;
   std::string_view type = tokens.next();
   if (type == "list") {
@@ -47,13 +48,13 @@ PlyProperty parse_property(const TextCursor& cursor, Tokens& tokens) {
   return property;
 }
 
-void parse_region_comment(const TextCursor& cursor, Tokens& tokens, PlyHeader& header) {
+void parse_region_comment(const io::TextCursor& cursor, io::Tokens& tokens, PlyHeader& header) {
   if (tokens.next() != "region") return;
   std::int64_t id = 0;
-  if (!parse_integer(tokens.next(), id) || id < 0) return;
+  if (!io::parse_integer(tokens.next(), id) || id < 0) return;
   if (static_cast<std::size_t>(id) >= kMaxRegionId) cursor.fail("region id " + std::to_string(id) + " too large");
   if (header.region_names.size() <= static_cast<std::size_t>(id)) header.region_names.resize(id + 1);
-  header.region_names[id] = std::string(trim(tokens.rest()));
+  header.region_names[id] = std::string(io::trim(tokens.rest()));
 }
 
 }  // namespace
@@ -89,13 +90,14 @@ int PlyElement::find(std::string_view wanted) const {
 }
 
 PlyHeader parse_ply_header(const std::string& path, std::string_view bytes) {
-  TextCursor cursor(path, bytes);
+  io::TextCursor cursor(path, bytes);
   std::string_view line;
-  if (!cursor.next_line(line) || trim(line) != "ply") throw InputError(path, "not a PLY file: it does not start with 'ply'");
+  if (!cursor.next_line(line) || io::trim(line) != "ply")
+    throw InputError(path, "not a PLY file: it does not start with 'ply'");
   PlyHeader header;
   bool has_format = false;
   while (cursor.next_line(line)) {
-    Tokens tokens(line);
+    io::Tokens tokens(line);
     const std::string_view keyword = tokens.next();
     if (keyword == "end_header") {
       if (!has_format) cursor.fail("no 'format' line in the PLY header");
@@ -109,7 +111,8 @@ PlyHeader parse_ply_header(const std::string& path, std::string_view bytes) {
       PlyElement element;
       element.name = std::string(tokens.next());
       std::int64_t count = 0;
-      if (!parse_integer(tokens.next(), count) || count < 0) cursor.fail("bad count for element '" + element.name + "'");
+      if (!io::parse_integer(tokens.next(), count) || count < 0)
+        cursor.fail("bad count for element '" + element.name + "'");
       element.count = static_cast<std::uint64_t>(count);
       header.elements.push_back(std::move(element));
     } else if (keyword == "property") {

@@ -1,5 +1,6 @@
 #include "ply_source.h"
-#include "text_cursor.h"
+
+#include <mr/io/text_cursor.h>
 
 #include <bit>
 #include <cmath>
@@ -90,9 +91,9 @@ void PlyAsciiSource::fail(const std::string& problem) const {
 }
 
 std::string_view PlyAsciiSource::token() {
-  while (pos_ < size_ && is_space(data_[pos_])) ++pos_;
+  while (pos_ < size_ && io::is_space(data_[pos_])) ++pos_;
   const std::size_t start = pos_;
-  while (pos_ < size_ && !is_space(data_[pos_])) ++pos_;
+  while (pos_ < size_ && !io::is_space(data_[pos_])) ++pos_;
   if (start == pos_) fail("the body is truncated: a value is missing");
   return {data_ + start, pos_ - start};
 }
@@ -100,18 +101,19 @@ std::string_view PlyAsciiSource::token() {
 double PlyAsciiSource::number(PlyType) {
   const std::string_view text = token();
   double value = 0;
-  if (!parse_number(text, value)) fail(quoted(text) + " is not a number");
+  if (!io::parse_number(text, value)) fail(io::quoted(text) + " is not a number");
   return value;
 }
 
 std::int64_t PlyAsciiSource::integer(PlyType type) {
   const std::string_view text = token();
   std::int64_t value = 0;
-  if (parse_integer(text, value)) return value;
+  if (io::parse_integer(text, value)) return value;
   double real = 0;
-  if (!ply_type_is_integer(type) && parse_number(text, real) && std::abs(real) < 9e15 && real == std::floor(real))
+  if (!ply_type_is_integer(type) && io::parse_number(text, real) && std::abs(real) < 9e15 &&
+      real == std::floor(real))
     return static_cast<std::int64_t>(real);
-  fail(quoted(text) + " is not an integer");
+  fail(io::quoted(text) + " is not an integer");
 }
 
 std::int64_t PlyAsciiSource::list_count(const PlyProperty& property) {

@@ -4,7 +4,9 @@
 // is an int 'region' face property with names in "comment region" lines.
 
 #include "formats.h"
-#include "output_file.h"
+
+#include <mr/core/errors.h>
+#include <mr/io/output_file.h>
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +25,7 @@ std::string one_line(std::string text) {
   return text;
 }
 
-void write_header(const TriangleSoup& soup, OutputFile& out, bool binary) {
+void write_header(const TriangleSoup& soup, io::OutputFile& out, bool binary) {
   out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\n";
   out << "comment written by meshrepair\n";
   for (std::size_t r = 0; r < soup.region_names.size(); ++r)
@@ -41,7 +43,7 @@ void write_header(const TriangleSoup& soup, OutputFile& out, bool binary) {
   out << "end_header\n";
 }
 
-void write_binary_body(const TriangleSoup& soup, OutputFile& out) {
+void write_binary_body(const TriangleSoup& soup, io::OutputFile& out) {
   for (std::size_t v = 0; v < soup.num_vertices(); ++v) {
     for (int k = 0; k < 3; ++k) out.write_le(soup.positions[v][k]);
     if (soup.has_normals())
@@ -58,7 +60,7 @@ void write_binary_body(const TriangleSoup& soup, OutputFile& out) {
   }
 }
 
-void write_ascii_body(const TriangleSoup& soup, OutputFile& out) {
+void write_ascii_body(const TriangleSoup& soup, io::OutputFile& out) {
   for (std::size_t v = 0; v < soup.num_vertices(); ++v) {
     out << soup.positions[v].x() << ' ' << soup.positions[v].y() << ' ' << soup.positions[v].z();
     if (soup.has_normals())
@@ -82,7 +84,7 @@ void write_ascii_body(const TriangleSoup& soup, OutputFile& out) {
 void write_ply(const TriangleSoup& soup, const std::filesystem::path& path, bool binary) {
   if (soup.num_vertices() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
     throw RunError("PLY with int indices cannot hold more than 2^31-1 vertices");
-  OutputFile out(path);
+  io::OutputFile out(path);
   write_header(soup, out, binary);
   if (binary)
     write_binary_body(soup, out);

@@ -11,9 +11,9 @@
 
 #include "formats.h"
 #include "soup_importer.h"
-#include "text_cursor.h"
 
 #include <mr/io/file_bytes.h>
+#include <mr/io/text_cursor.h>
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +33,7 @@ std::uint64_t binary_facet_count(const std::vector<char>& bytes) {
 bool looks_like_ascii(const std::vector<char>& bytes) {
   std::string_view text(bytes.data(), bytes.size());
   const std::size_t start = text.find_first_not_of(" \t\r\n");
-  if (start == std::string_view::npos || !istarts_with(text.substr(start), "solid")) return false;
+  if (start == std::string_view::npos || !io::istarts_with(text.substr(start), "solid")) return false;
   const std::string_view sample = text.substr(0, 1024);
   return std::none_of(sample.begin(), sample.end(), [](char c) {
     return static_cast<unsigned char>(c) < 9 || c == 127;
@@ -59,10 +59,11 @@ class AsciiStlParser {
   TriangleSoup parse() {
     std::string_view line;
     while (cursor_.next_content_line(line, '\0')) {
-      Tokens tokens(line);
+      io::Tokens tokens(line);
       const std::string_view keyword = tokens.next();
-      if (!iequals(keyword, "solid")) cursor_.fail("expected 'solid', found '" + std::string(keyword) + "'");
-      parse_solid(std::string(trim(tokens.rest())));
+      if (!io::iequals(keyword, "solid"))
+        cursor_.fail("expected 'solid', found '" + std::string(keyword) + "'");
+      parse_solid(std::string(io::trim(tokens.rest())));
     }
     if (solids_ == 0) cursor_.fail("no 'solid' in the file");
     TriangleSoup soup = weld_triangle_corners(corners_);
@@ -79,10 +80,11 @@ class AsciiStlParser {
     const std::int32_t region = regions_.id_of(name);
     std::string_view line;
     while (cursor_.next_content_line(line, '\0')) {
-      Tokens tokens(line);
+      io::Tokens tokens(line);
       const std::string_view keyword = tokens.next();
-      if (iequals(keyword, "endsolid")) return;
-      if (!iequals(keyword, "facet")) cursor_.fail("expected 'facet' or 'endsolid', found '" + std::string(keyword) + "'");
+      if (io::iequals(keyword, "endsolid")) return;
+      if (!io::iequals(keyword, "facet"))
+        cursor_.fail("expected 'facet' or 'endsolid', found '" + std::string(keyword) + "'");
       parse_facet(region);
     }
     cursor_.fail("the file ends inside a solid (no 'endsolid')");
@@ -93,10 +95,11 @@ class AsciiStlParser {
     loop_.clear();
     std::string_view line;
     while (cursor_.next_content_line(line, '\0')) {
-      Tokens tokens(line);
+      io::Tokens tokens(line);
       const std::string_view keyword = tokens.next();
-      if (iequals(keyword, "endloop")) break;
-      if (!iequals(keyword, "vertex")) cursor_.fail("expected 'vertex' or 'endloop', found '" + std::string(keyword) + "'");
+      if (io::iequals(keyword, "endloop")) break;
+      if (!io::iequals(keyword, "vertex"))
+        cursor_.fail("expected 'vertex' or 'endloop', found '" + std::string(keyword) + "'");
       Vec3f p;
       for (int k = 0; k < 3; ++k) p[k] = coordinate(tokens.next());
       loop_.push_back(p.cast<double>());
@@ -114,7 +117,8 @@ class AsciiStlParser {
   float coordinate(std::string_view token) const {
     float value = 0;
     if (token.empty()) cursor_.fail("missing vertex coordinate");
-    if (!parse_number(token, value)) cursor_.fail(quoted(token) + " is not a number (vertex coordinate)");
+    if (!io::parse_number(token, value))
+      cursor_.fail(io::quoted(token) + " is not a number (vertex coordinate)");
     if (!std::isfinite(value)) cursor_.fail("vertex coordinate is not finite (NaN, Inf or beyond float range)");
     return value;
   }
@@ -122,13 +126,13 @@ class AsciiStlParser {
   void expect_line(std::string_view first, std::string_view second) {
     std::string_view line;
     if (!cursor_.next_content_line(line, '\0')) cursor_.fail("the file ends inside a facet");
-    Tokens tokens(line);
-    if (!iequals(tokens.next(), first) || (!second.empty() && !iequals(tokens.next(), second)))
+    io::Tokens tokens(line);
+    if (!io::iequals(tokens.next(), first) || (!second.empty() && !io::iequals(tokens.next(), second)))
       cursor_.fail("expected '" + std::string(first) + (second.empty() ? "" : " ") + std::string(second) +
                    "', found '" + std::string(line.substr(0, 60)) + "'");
   }
 
-  TextCursor cursor_;
+  io::TextCursor cursor_;
   std::vector<Vec3d> corners_;
   std::vector<Vec3d> loop_;
   std::vector<std::int32_t> face_regions_;

@@ -2,18 +2,24 @@
 // hold); facet normals are computed from the triangle, zero when degenerate.
 
 #include "formats.h"
-#include "output_file.h"
 
+#include <mr/core/errors.h>
+#include <mr/io/output_file.h>
+
+#include <bit>
 #include <limits>
 
 namespace mr::plugins::stl_obj_off_ply {
 namespace {
 
+// Facets are written as whole float arrays, in the host byte order.
+static_assert(std::endian::native == std::endian::little, "binary STL is little-endian");
+
 Vec3f facet_normal_of(const TriangleSoup& soup, const Triangle& t) {
   return facet_normal(soup.positions[t[0]], soup.positions[t[1]], soup.positions[t[2]]).cast<float>();
 }
 
-void write_binary(const TriangleSoup& soup, OutputFile& out) {
+void write_binary(const TriangleSoup& soup, io::OutputFile& out) {
   if (soup.num_triangles() > std::numeric_limits<std::uint32_t>::max())
     throw RunError("binary STL cannot hold more than 2^32-1 facets");
   std::string header = "binary STL written by meshrepair";
@@ -31,9 +37,11 @@ void write_binary(const TriangleSoup& soup, OutputFile& out) {
   }
 }
 
-void write_vector(OutputFile& out, const Vec3f& v) { out << v.x() << ' ' << v.y() << ' ' << v.z() << '\n'; }
+void write_vector(io::OutputFile& out, const Vec3f& v) {
+  out << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
+}
 
-void write_ascii(const TriangleSoup& soup, OutputFile& out) {
+void write_ascii(const TriangleSoup& soup, io::OutputFile& out) {
   out << "solid mesh\n";
   for (const Triangle& t : soup.triangles) {
     out << "facet normal ";
@@ -58,7 +66,7 @@ Vec3d facet_normal(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
 }
 
 void write_stl(const TriangleSoup& soup, const std::filesystem::path& path, bool binary) {
-  OutputFile out(path);
+  io::OutputFile out(path);
   if (binary)
     write_binary(soup, out);
   else

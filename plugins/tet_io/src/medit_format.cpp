@@ -1,12 +1,12 @@
 // Medit .mesh (ASCII): Vertices, Tetrahedra and Triangles with references
 // (labels), 1-based indices. Other keywords are skipped by their entry sizes.
 
-#include "output_file.h"
 #include "tet_formats_internal.h"
-#include "text_tokenizer.h"
 
 #include <mr/core/errors.h>
 #include <mr/io/file_bytes.h>
+#include <mr/io/output_file.h>
+#include <mr/io/text_cursor.h>
 
 #include <algorithm>
 #include <array>
@@ -136,20 +136,20 @@ class MeditReader {
     for (std::uint64_t i = 0; i < n * static_cast<std::uint64_t>(size); ++i) cursor_.token("entry value");
   }
 
-  TextCursor cursor_;
+  io::TextCursor cursor_;
   TetMesh mesh_;
   int dimension_ = 3;
   bool seen_vertices_ = false;
 };
 
 template <std::size_t N>
-void write_cells(OutputFile& out, const char* keyword, const std::vector<std::array<Index, N>>& cells,
+void write_cells(io::OutputFile& out, const char* keyword, const std::vector<std::array<Index, N>>& cells,
                  const std::vector<std::int32_t>& labels) {
   if (cells.empty()) return;
-  out.text("\n").text(keyword).text("\n").integer(static_cast<std::int64_t>(cells.size())).text("\n");
+  out << "\n" << keyword << "\n" << static_cast<std::int64_t>(cells.size()) << "\n";
   for (std::size_t c = 0; c < cells.size(); ++c) {
-    for (Index v : cells[c]) out.integer(std::int64_t(v) + 1).text(" ");
-    out.integer(labels.empty() ? 0 : labels[c]).text("\n");
+    for (Index v : cells[c]) out << std::int64_t(v) + 1 << " ";
+    out << static_cast<std::int64_t>(labels.empty() ? 0 : labels[c]) << "\n";
   }
 }
 
@@ -161,13 +161,13 @@ TetMesh read_medit(const std::filesystem::path& path) {
 }
 
 void write_medit(const TetMesh& mesh, const std::filesystem::path& path) {
-  OutputFile out(path);
-  out.text("MeshVersionFormatted 2\n\nDimension 3\n\nVertices\n").integer(static_cast<std::int64_t>(mesh.positions.size())).text("\n");
-  for (const Vec3d& p : mesh.positions)
-    out.real(p.x()).text(" ").real(p.y()).text(" ").real(p.z()).text(" 0\n");
+  io::OutputFile out(path);
+  out << "MeshVersionFormatted 2\n\nDimension 3\n\nVertices\n"
+      << static_cast<std::int64_t>(mesh.positions.size()) << "\n";
+  for (const Vec3d& p : mesh.positions) out << p.x() << " " << p.y() << " " << p.z() << " 0\n";
   write_cells(out, "Tetrahedra", mesh.tets, mesh.tet_labels);
   write_cells(out, "Triangles", mesh.faces, mesh.face_labels);
-  out.text("\nEnd\n");
+  out << "\nEnd\n";
   out.close();
 }
 

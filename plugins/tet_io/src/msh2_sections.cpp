@@ -16,7 +16,7 @@ std::int32_t label_from_tags(std::int32_t physical, std::int32_t elementary, std
   return tag_count >= 2 ? elementary : 0;
 }
 
-void read_ascii_nodes(TextCursor& cursor, MshContent& content, std::uint64_t count) {
+void read_ascii_nodes(io::TextCursor& cursor, MshContent& content, std::uint64_t count) {
   cursor.require(count, 8, "$Nodes");
   content.positions.reserve(content.positions.size() + count);
   content.node_tags.reserve(content.node_tags.size() + count);
@@ -27,7 +27,7 @@ void read_ascii_nodes(TextCursor& cursor, MshContent& content, std::uint64_t cou
   }
 }
 
-void read_binary_nodes(TextCursor& cursor, const MshEncoding& encoding, MshContent& content,
+void read_binary_nodes(io::TextCursor& cursor, const MshEncoding& encoding, MshContent& content,
                        std::uint64_t count) {
   BinarySource source(cursor, encoding);
   cursor.require(count, 4 + 3 * 8, "$Nodes");
@@ -42,7 +42,7 @@ void read_binary_nodes(TextCursor& cursor, const MshEncoding& encoding, MshConte
   }
 }
 
-void read_ascii_elements(TextCursor& cursor, MshContent& content, std::uint64_t count) {
+void read_ascii_elements(io::TextCursor& cursor, MshContent& content, std::uint64_t count) {
   cursor.require(count, 8, "$Elements");
   std::array<std::uint64_t, 4> nodes{};
   for (std::uint64_t e = 0; e < count; ++e) {
@@ -67,7 +67,7 @@ void read_ascii_elements(TextCursor& cursor, MshContent& content, std::uint64_t 
 
 // Binary elements come in blocks: a header (type, count, number of tags)
 // followed by `count` records of int32 values.
-void read_binary_elements(TextCursor& cursor, const MshEncoding& encoding, MshContent& content,
+void read_binary_elements(io::TextCursor& cursor, const MshEncoding& encoding, MshContent& content,
                           std::uint64_t count) {
   BinarySource source(cursor, encoding);
   std::array<std::uint64_t, 4> nodes{};
@@ -101,14 +101,14 @@ void read_binary_elements(TextCursor& cursor, const MshEncoding& encoding, MshCo
 
 }  // namespace
 
-void read_msh2_nodes(TextCursor& cursor, const MshEncoding& encoding, MshContent& content) {
+void read_msh2_nodes(io::TextCursor& cursor, const MshEncoding& encoding, MshContent& content) {
   const std::uint64_t count = cursor.unsigned_integer("number of nodes");
   if (!encoding.binary) return read_ascii_nodes(cursor, content, count);
   cursor.skip_line();
   read_binary_nodes(cursor, encoding, content, count);
 }
 
-void read_msh2_elements(TextCursor& cursor, const MshEncoding& encoding, MshContent& content) {
+void read_msh2_elements(io::TextCursor& cursor, const MshEncoding& encoding, MshContent& content) {
   const std::uint64_t count = cursor.unsigned_integer("number of elements");
   if (!encoding.binary) return read_ascii_elements(cursor, content, count);
   cursor.skip_line();

@@ -109,7 +109,7 @@ void read_elements(Source& source, const EntityLabels& labels, MshContent& conte
 
 }  // namespace
 
-void read_msh4_entities(TextCursor& cursor, const MshEncoding& encoding, EntityLabels& labels) {
+void read_msh4_entities(io::TextCursor& cursor, const MshEncoding& encoding, EntityLabels& labels) {
   if (encoding.binary) {
     BinarySource source(cursor, encoding);
     read_entities(source, labels);
@@ -119,7 +119,7 @@ void read_msh4_entities(TextCursor& cursor, const MshEncoding& encoding, EntityL
   }
 }
 
-void read_msh4_nodes(TextCursor& cursor, const MshEncoding& encoding, MshContent& content) {
+void read_msh4_nodes(io::TextCursor& cursor, const MshEncoding& encoding, MshContent& content) {
   if (encoding.binary) {
     BinarySource source(cursor, encoding);
     read_nodes(source, content);
@@ -129,7 +129,7 @@ void read_msh4_nodes(TextCursor& cursor, const MshEncoding& encoding, MshContent
   }
 }
 
-void read_msh4_elements(TextCursor& cursor, const MshEncoding& encoding, const EntityLabels& labels,
+void read_msh4_elements(io::TextCursor& cursor, const MshEncoding& encoding, const EntityLabels& labels,
                         MshContent& content) {
   if (encoding.binary) {
     BinarySource source(cursor, encoding);

@@ -18,7 +18,7 @@ struct MshHeader {
 
 // Reads the int 1 that follows the header line of a binary file, which tells
 // whether the file's byte order is ours.
-void read_endianness(TextCursor& cursor, MshEncoding& encoding) {
+void read_endianness(io::TextCursor& cursor, MshEncoding& encoding) {
   cursor.skip_line();
   const std::uint32_t one = cursor.raw<std::uint32_t>("endianness check");
   if (one == 1) return;
@@ -26,7 +26,7 @@ void read_endianness(TextCursor& cursor, MshEncoding& encoding) {
   encoding.swap_bytes = true;
 }
 
-MshHeader read_header(TextCursor& cursor) {
+MshHeader read_header(io::TextCursor& cursor) {
   if (cursor.token_or_empty() != "$MeshFormat")
     cursor.fail("not a Gmsh MSH file (it does not start with $MeshFormat)");
   const std::string version(cursor.token("MSH version"));
@@ -94,7 +94,7 @@ class MshReader {
     return true;
   }
 
-  TextCursor cursor_;
+  io::TextCursor cursor_;
   MshHeader header_;
   EntityLabels labels_;
   MshContent content_;

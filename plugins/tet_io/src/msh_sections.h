@@ -16,12 +16,12 @@ inline std::uint64_t entity_key(std::int32_t dim, std::int32_t tag) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(dim)) << 32) | static_cast<std::uint32_t>(tag);
 }
 
-void read_msh4_entities(TextCursor& cursor, const MshEncoding& encoding, EntityLabels& labels);
-void read_msh4_nodes(TextCursor& cursor, const MshEncoding& encoding, MshContent& content);
-void read_msh4_elements(TextCursor& cursor, const MshEncoding& encoding, const EntityLabels& labels,
+void read_msh4_entities(io::TextCursor& cursor, const MshEncoding& encoding, EntityLabels& labels);
+void read_msh4_nodes(io::TextCursor& cursor, const MshEncoding& encoding, MshContent& content);
+void read_msh4_elements(io::TextCursor& cursor, const MshEncoding& encoding, const EntityLabels& labels,
                         MshContent& content);
 
-void read_msh2_nodes(TextCursor& cursor, const MshEncoding& encoding, MshContent& content);
-void read_msh2_elements(TextCursor& cursor, const MshEncoding& encoding, MshContent& content);
+void read_msh2_nodes(io::TextCursor& cursor, const MshEncoding& encoding, MshContent& content);
+void read_msh2_elements(io::TextCursor& cursor, const MshEncoding& encoding, MshContent& content);
 
 }  // namespace mr::plugins::tet

@@ -2,7 +2,7 @@
 // The two encodings of MSH section bodies behind one interface, so that each
 // section is parsed by one template for ASCII and binary alike.
 
-#include "text_tokenizer.h"
+#include <mr/io/text_cursor.h>
 
 #include <bit>
 #include <cstdint>
@@ -18,7 +18,7 @@ struct MshEncoding {
 
 class AsciiSource {
  public:
-  explicit AsciiSource(TextCursor& cursor) : cursor_(cursor) {}
+  explicit AsciiSource(io::TextCursor& cursor) : cursor_(cursor) {}
   std::uint64_t size(const char* what) { return cursor_.unsigned_integer(what); }
   std::int32_t int32(const char* what) { return cursor_.int32(what); }
   double real(const char* what) { return cursor_.real(what); }
@@ -27,15 +27,15 @@ class AsciiSource {
   void require(std::uint64_t count, std::uint64_t values, const char* what) const {
     cursor_.require(count, 2 * values, what);
   }
-  TextCursor& cursor() { return cursor_; }
+  io::TextCursor& cursor() { return cursor_; }
 
  private:
-  TextCursor& cursor_;
+  io::TextCursor& cursor_;
 };
 
 class BinarySource {
  public:
-  BinarySource(TextCursor& cursor, const MshEncoding& encoding) : cursor_(cursor), encoding_(encoding) {}
+  BinarySource(io::TextCursor& cursor, const MshEncoding& encoding) : cursor_(cursor), encoding_(encoding) {}
   std::uint64_t size(const char* what) {
     if (encoding_.size_t_bytes == 4) return value<std::uint32_t>(what);
     return value<std::uint64_t>(what);
@@ -47,7 +47,7 @@ class BinarySource {
   void require(std::uint64_t count, std::uint64_t values, const char* what) const {
     cursor_.require(count, 4 * values, what);
   }
-  TextCursor& cursor() { return cursor_; }
+  io::TextCursor& cursor() { return cursor_; }
 
  private:
   template <class T>
@@ -64,7 +64,7 @@ class BinarySource {
     return static_cast<T>(r);
   }
 
-  TextCursor& cursor_;
+  io::TextCursor& cursor_;
   MshEncoding encoding_;
 };
 

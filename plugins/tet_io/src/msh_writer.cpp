@@ -3,10 +3,10 @@
 // and (when positive) its elementary/entity tag. Node tags are 1..N in order.
 
 #include "msh_layout.h"
-#include "output_file.h"
 #include "tet_formats_internal.h"
 
 #include <mr/core/errors.h>
+#include <mr/io/output_file.h>
 
 #include <limits>
 #include <string>
@@ -18,50 +18,55 @@ namespace {
 // line, or as raw binary (size_t = uint64, int = int32, double).
 class MshOutput {
  public:
-  MshOutput(OutputFile& file, bool binary) : file_(file), binary_(binary) {}
+  MshOutput(io::OutputFile& file, bool binary) : file_(file), binary_(binary) {}
 
-  void size(std::uint64_t v) { binary_ ? void(file_.raw(v)) : ascii_integer(static_cast<std::int64_t>(v)); }
-  void int32(std::int32_t v) { binary_ ? void(file_.raw(v)) : ascii_integer(v); }
+  void size(std::uint64_t v) {
+    binary_ ? void(file_.write_native(v)) : ascii_integer(static_cast<std::int64_t>(v));
+  }
+  void int32(std::int32_t v) { binary_ ? void(file_.write_native(v)) : ascii_integer(v); }
   void real(double v) {
     if (binary_) {
-      file_.raw(v);
+      file_.write_native(v);
     } else {
       separate();
-      file_.real(v);
+      file_ << v;
     }
   }
   void end_line() {
-    if (!binary_) file_.text("\n");
+    if (!binary_) file_ << "\n";
     line_start_ = true;
   }
   /// Section markers are text in both encodings; binary data ends with a newline.
-  void begin_section(const char* name) { file_.text(name).text("\n"); }
+  void begin_section(const char* name) { file_ << name << "\n"; }
   void end_section(const char* name) {
-    if (binary_) file_.text("\n");
-    file_.text(name).text("\n");
+    if (binary_) file_ << "\n";
+    file_ << name << "\n";
   }
-  OutputFile& file() { return file_; }
+  io::OutputFile& file() { return file_; }
   bool binary() const { return binary_; }
 
  private:
   void separate() {
-    if (!line_start_) file_.text(" ");
+    if (!line_start_) file_ << " ";
     line_start_ = false;
   }
   void ascii_integer(std::int64_t v) {
     separate();
-    file_.integer(v);
+    file_ << static_cast<std::int64_t>(v);
   }
 
-  OutputFile& file_;
+  io::OutputFile& file_;
   bool binary_;
   bool line_start_ = true;
 };
 
 void write_header(MshOutput& out, const char* version) {
-  out.file().text("$MeshFormat\n").text(version).text(out.binary() ? " 1 8\n" : " 0 8\n");
-  if (out.binary()) out.file().raw(std::int32_t{1}).text("\n");
-  out.file().text("$EndMeshFormat\n");
+  out.file() << "$MeshFormat\n" << version << (out.binary() ? " 1 8\n" : " 0 8\n");
+  if (out.binary()) {
+    out.file().write_native(std::int32_t{1});
+    out.file() << "\n";
+  }
+  out.file() << "$EndMeshFormat\n";
 }
 
 // ---- MSH 4.1 ----
@@ -98,7 +103,7 @@ void write_msh4_nodes(MshOutput& out, const TetMesh& mesh, const MshLayout& layo
     for (std::size_t i = 1; i <= n; ++i) out.size(i), out.end_line();
     if (out.binary()) {
       static_assert(sizeof(Vec3d) == 3 * sizeof(double));
-      out.file().bytes(mesh.positions.data(), n * sizeof(Vec3d));
+      out.file().write_raw(mesh.positions.data(), n * sizeof(Vec3d));
     } else {
       for (const Vec3d& p : mesh.positions) out.real(p.x()), out.real(p.y()), out.real(p.z()), out.end_line();
     }
@@ -142,7 +147,7 @@ void check_int32_counts(const TetMesh& mesh, const std::filesystem::path& path) 
 
 void write_msh2_nodes(MshOutput& out, const TetMesh& mesh) {
   out.begin_section("$Nodes");
-  out.file().integer(static_cast<std::int64_t>(mesh.positions.size())).text("\n");
+  out.file() << static_cast<std::int64_t>(mesh.positions.size()) << "\n";
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     const Vec3d& p = mesh.positions[i];
     out.int32(static_cast<std::int32_t>(i + 1)), out.real(p.x()), out.real(p.y()), out.real(p.z());
@@ -172,7 +177,7 @@ void write_msh2_cells(MshOutput& out, const MshDimension& dimension, const std::
 
 void write_msh2_elements(MshOutput& out, const TetMesh& mesh, const MshLayout& layout) {
   out.begin_section("$Elements");
-  out.file().integer(static_cast<std::int64_t>(mesh.tets.size() + mesh.faces.size())).text("\n");
+  out.file() << static_cast<std::int64_t>(mesh.tets.size() + mesh.faces.size()) << "\n";
   std::int32_t next_number = 1;
   write_msh2_cells(out, layout.volumes, mesh.tets, 4, next_number);
   write_msh2_cells(out, layout.surfaces, mesh.faces, 2, next_number);
@@ -187,7 +192,7 @@ void write_msh(const TetMesh& mesh, const std::filesystem::path& path, const io:
     throw UsageError("unsupported MSH version '" + options.msh_version + "' (use 4.1 or 2.2)");
   if (v22) check_int32_counts(mesh, path);
   const MshLayout layout = make_msh_layout(mesh);
-  OutputFile file(path);
+  io::OutputFile file(path);
   MshOutput out(file, options.binary);
   write_header(out, v22 ? "2.2" : "4.1");
   if (v22) {

@@ -2,8 +2,9 @@
 // 10, and an Int32 cell array "label". Binary output is inline base64 with a
 // UInt64 byte-count header, which VTK, ParaView and meshio read.
 
-#include "output_file.h"
 #include "tet_formats_internal.h"
+
+#include <mr/io/output_file.h>
 
 #include <algorithm>
 #include <bit>
@@ -17,7 +18,7 @@ namespace {
 // Streams bytes as base64 text, 3 input bytes to 4 characters.
 class Base64Writer {
  public:
-  explicit Base64Writer(OutputFile& out) : out_(out) {}
+  explicit Base64Writer(io::OutputFile& out) : out_(out) {}
 
   void put(const void* data, std::size_t size) {
     const auto* bytes = static_cast<const unsigned char*>(data);
@@ -38,11 +39,11 @@ class Base64Writer {
     char quad[4] = {kAlphabet[(v >> 18) & 63], kAlphabet[(v >> 12) & 63], kAlphabet[(v >> 6) & 63], kAlphabet[v & 63]};
     if (count < 3) quad[3] = '=';
     if (count < 2) quad[2] = '=';
-    out_.bytes(quad, 4);
+    out_.write_raw(quad, 4);
     carried_ = 0;
   }
 
-  OutputFile& out_;
+  io::OutputFile& out_;
   unsigned char carry_[3] = {};
   int carried_ = 0;
 };
@@ -57,10 +58,11 @@ const char* vtk_type_name() {
 
 // Writes one DataArray whose `count` values are value(0) .. value(count - 1).
 template <class T, class ValueAt>
-void write_array(OutputFile& out, bool binary, const char* name, int components, std::size_t count,
+void write_array(io::OutputFile& out, bool binary, const char* name, int components, std::size_t count,
                  const ValueAt& value) {
-  out.text("        <DataArray type=\"").text(vtk_type_name<T>()).text("\" Name=\"").text(name);
-  out.text("\" NumberOfComponents=\"").integer(components).text(binary ? "\" format=\"binary\">\n" : "\" format=\"ascii\">\n");
+  out << "        <DataArray type=\"" << vtk_type_name<T>() << "\" Name=\"" << name;
+  out << "\" NumberOfComponents=\"" << components
+      << (binary ? "\" format=\"binary\">\n" : "\" format=\"ascii\">\n");
   if (binary) {
     Base64Writer base64(out);
     const std::uint64_t byte_count = count * sizeof(T);
@@ -76,14 +78,14 @@ void write_array(OutputFile& out, bool binary, const char* name, int components,
   } else {
     for (std::size_t i = 0; i < count; ++i) {
       if constexpr (std::is_floating_point_v<T>) {
-        out.real(value(i));
+        out << value(i);
       } else {
-        out.integer(value(i));
+        out << static_cast<std::int64_t>(value(i));
       }
-      out.text((i + 1) % static_cast<std::size_t>(components) == 0 ? "\n" : " ");
+      out << ((i + 1) % static_cast<std::size_t>(components) == 0 ? "\n" : " ");
     }
   }
-  out.text("\n        </DataArray>\n");
+  out << "\n        </DataArray>\n";
 }
 
 }  // namespace
@@ -91,24 +93,24 @@ void write_array(OutputFile& out, bool binary, const char* name, int components,
 void write_vtu(const TetMesh& mesh, const std::filesystem::path& path, const io::WriteOptions& options) {
   const bool binary = options.binary;
   const std::size_t points = mesh.positions.size(), cells = mesh.tets.size();
-  OutputFile out(path);
-  out.text("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"");
-  out.text(std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian");
-  out.text("\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"");
-  out.integer(static_cast<std::int64_t>(points)).text("\" NumberOfCells=\"").integer(static_cast<std::int64_t>(cells));
-  out.text("\">\n      <Points>\n");
+  io::OutputFile out(path);
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"";
+  out << (std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian");
+  out << "\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"";
+  out << static_cast<std::int64_t>(points) << "\" NumberOfCells=\"" << static_cast<std::int64_t>(cells);
+  out << "\">\n      <Points>\n";
   write_array<double>(out, binary, "Points", 3, 3 * points,
                       [&](std::size_t i) { return mesh.positions[i / 3][static_cast<int>(i % 3)]; });
-  out.text("      </Points>\n      <Cells>\n");
+  out << "      </Points>\n      <Cells>\n";
   write_array<std::int64_t>(out, binary, "connectivity", 1, 4 * cells,
                             [&](std::size_t i) { return std::int64_t(mesh.tets[i / 4][i % 4]); });
   write_array<std::int64_t>(out, binary, "offsets", 1, cells,
                             [](std::size_t i) { return std::int64_t(4 * (i + 1)); });
   write_array<std::uint8_t>(out, binary, "types", 1, cells, [](std::size_t) { return std::uint8_t{10}; });
-  out.text("      </Cells>\n      <CellData Scalars=\"label\">\n");
+  out << "      </Cells>\n      <CellData Scalars=\"label\">\n";
   write_array<std::int32_t>(out, binary, "label", 1, cells,
                             [&](std::size_t i) { return mesh.has_tet_labels() ? mesh.tet_labels[i] : 0; });
-  out.text("      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
+  out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
   out.close();
 }
 

@@ -53,4 +53,13 @@ struct SimplifyResult {
 /// a non-positive epsilon or an inconsistent soup.
 SimplifyResult simplify_in_envelope(const TriangleSoup& input, const SimplifyOptions& options = {});
 
+/// The same, but every changed triangle stays inside the envelope of
+/// `reference` instead of `surface`'s own: for a surface that a later stage
+/// derived from the original input (meshrepair simplifies the peeled boundary
+/// of a tet mesh inside the envelope of what the user gave). epsilon_rel is
+/// relative to the bounding-box diagonal of `reference`. Throws
+/// mr::UsageError as simplify_in_envelope, also for an inconsistent reference.
+SimplifyResult simplify_in_envelope_of(const TriangleSoup& surface, const TriangleSoup& reference,
+                                       const SimplifyOptions& options = {});
+
 }  // namespace mr::simplify

@@ -32,7 +32,9 @@ struct TetrahedralizeOptions {
   double stop_energy = 10.0;
   /// Upper bound on mesh-improvement passes.
   int max_passes = 80;
-  WindingRule winding_rule = WindingRule::positive;
+  /// |w| > 1/2 by default: a model whose faces all point inward (a common
+  /// export defect) is still a solid, where w > 1/2 would keep nothing.
+  WindingRule winding_rule = WindingRule::absolute;
   /// Skip the input simplification stage.
   bool skip_simplify = false;
   /// Worker threads; 0 means all hardware threads.

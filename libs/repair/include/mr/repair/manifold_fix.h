@@ -1,0 +1,49 @@
+#pragma once
+// Making the boundary of a set of tets edge- and vertex-manifold. Two parts
+// of a solid may touch at a vertex or along an edge; duplicating the vertex
+// alone would leave two coincident vertices (what fTetWild's
+// --manifold-surface does). Instead, each round:
+//   - a vertex whose tets fall into several classes connected through faces
+//     is split: every class but the largest gets its own copy of the vertex,
+//     moved a short way into the interior of one of its tets. A move is kept
+//     only when every tet of the class stays positively oriented and no face
+//     of the new boundary meets another face improperly (exact tests);
+//   - what a split cannot resolve (a non-manifold edge or vertex whose tets
+//     are connected, or a split with no valid move) is resolved by removing
+//     the tets of one fan around it, choosing the candidate whose new
+//     boundary faces stay inside the envelope, then the smallest volume.
+// Rounds repeat until the boundary is manifold.
+
+#include <mr/core/tet_mesh.h>
+#include <mr/envelope/envelope.h>
+
+#include <cstddef>
+
+namespace mr::repair {
+
+struct ManifoldFixOptions {
+  /// Largest distance a split copy of a vertex moves, absolute. > 0.
+  double max_move = 0.0;
+  /// Upper bound on rounds; mr::RunError when defects remain after them.
+  int max_rounds = 32;
+};
+
+struct ManifoldFixStats {
+  std::size_t nonmanifold_edges_found = 0;     ///< on the boundary before the fix
+  std::size_t nonmanifold_vertices_found = 0;  ///< idem, vertices
+  std::size_t vertex_copies = 0;               ///< split copies made and moved
+  std::size_t removed_tets = 0;
+  /// New boundary faces left by removals that are not inside the envelope.
+  std::size_t faces_outside_envelope = 0;
+  int rounds = 0;
+};
+
+/// Edits `mesh` (positions and tets; labels and tagged faces are dropped)
+/// until the boundary of its tets is manifold. Tets must be positively
+/// oriented and form a valid embedding. `envelope` (may be null) guides the
+/// choice of removals. Throws mr::RunError when the rounds run out or when
+/// every tet would have to go.
+ManifoldFixStats make_boundary_manifold(TetMesh& mesh, const envelope::Envelope* envelope,
+                                        const ManifoldFixOptions& options);
+
+}  // namespace mr::repair

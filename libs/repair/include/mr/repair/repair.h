@@ -1,0 +1,56 @@
+#pragma once
+// The repair stage of meshrepair (DESIGN.md section 2, stage 7, fast path):
+// from the tets the winding-number filter kept to a watertight surface.
+//   1. manifold fix: non-manifold edges and vertices of the tets' boundary
+//      are resolved geometrically (see manifold_fix.h);
+//   2. peel: the boundary of the tets, oriented outward;
+//   3. clean-up: edge collapses and flips inside the envelope of the
+//      ORIGINAL input, vetoing any that leaves it or creates a
+//      self-intersection (mr::simplify::simplify_in_envelope_of).
+
+#include <mr/core/tet_mesh.h>
+#include <mr/core/triangle_soup.h>
+#include <mr/repair/manifold_fix.h>
+
+#include <string>
+#include <vector>
+
+namespace mr::repair {
+
+struct RepairOptions {
+  /// Envelope radius, absolute (the pipeline's derived epsilon). > 0.
+  double epsilon = 0.0;
+  /// Worker threads for the clean-up; 0 means all hardware threads.
+  int threads = 0;
+  /// Run the clean-up (collapses and flips inside the envelope).
+  bool cleanup = true;
+  /// Upper bound on the rounds of the manifold fix.
+  int max_manifold_rounds = 32;
+};
+
+struct StageTime {
+  std::string name;
+  double seconds = 0.0;
+};
+
+struct RepairResult {
+  /// Closed, edge- and vertex-manifold, oriented outward; no two vertices
+  /// at the same position.
+  TriangleSoup surface;
+  ManifoldFixStats manifold;
+  std::size_t peeled_faces = 0;   ///< faces of the boundary before the clean-up
+  std::size_t collapses = 0;
+  std::size_t flips = 0;
+  std::vector<StageTime> stages;  ///< "manifold", "peel", "cleanup", in order
+};
+
+/// Repairs the boundary of `kept` (positively oriented tets, e.g. the output
+/// of the winding-number filter) and returns it as a surface. `input` is the
+/// original input soup whose epsilon-envelope bounds every geometric change.
+/// Throws mr::UsageError on bad options or an inconsistent mesh, and
+/// mr::RunError when `kept` has no tet or the surface cannot be made
+/// manifold.
+RepairResult repair_surface_from_tets(const TetMesh& kept, const TriangleSoup& input,
+                                      const RepairOptions& options);
+
+}  // namespace mr::repair

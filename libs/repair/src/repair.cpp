@@ -1,0 +1,95 @@
+#include <mr/repair/repair.h>
+
+#include "boundary_defects.h"
+
+#include <mr/core/boundary.h>
+#include <mr/core/errors.h>
+#include <mr/envelope/envelope.h>
+#include <mr/simplify/simplify.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace mr::repair {
+namespace {
+
+// The split copies of a vertex move at most this fraction of epsilon: far
+// enough to stay apart when written as 32-bit floats, close enough to keep
+// the surface where it was.
+constexpr double kMoveFraction = 0.1;
+
+class StageClock {
+ public:
+  StageClock(RepairResult& result, std::string name)
+      : result_(result), name_(std::move(name)), start_(std::chrono::steady_clock::now()) {}
+  ~StageClock() {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    result_.stages.push_back({name_, seconds});
+  }
+  StageClock(const StageClock&) = delete;
+  StageClock& operator=(const StageClock&) = delete;
+
+ private:
+  RepairResult& result_;
+  std::string name_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+void check_arguments(const TetMesh& kept, const TriangleSoup& input, const RepairOptions& options) {
+  if (!(options.epsilon > 0.0) || !std::isfinite(options.epsilon))
+    throw UsageError("repair: epsilon must be finite and > 0");
+  if (options.threads < 0) throw UsageError("repair: thread count must be >= 0");
+  if (const std::string problem = find_tet_mesh_inconsistency(kept); !problem.empty())
+    throw UsageError("repair: inconsistent tet mesh: " + problem);
+  if (const std::string problem = find_soup_inconsistency(input); !problem.empty())
+    throw UsageError("repair: inconsistent input soup: " + problem);
+  if (kept.tets.empty()) throw RunError("repair: no tet was kept: the input encloses no volume");
+}
+
+TriangleSoup clean_up(const TriangleSoup& peeled, const TriangleSoup& input, const RepairOptions& options,
+                      RepairResult& result) {
+  simplify::SimplifyOptions simplify_options;
+  simplify_options.epsilon_abs = options.epsilon;
+  simplify_options.threads = options.threads;
+  simplify::SimplifyResult simplified = simplify::simplify_in_envelope_of(peeled, input, simplify_options);
+  result.collapses = simplified.collapses;
+  result.flips = simplified.flips;
+  return std::move(simplified.soup);
+}
+
+}  // namespace
+
+RepairResult repair_surface_from_tets(const TetMesh& kept, const TriangleSoup& input, const RepairOptions& options) {
+  check_arguments(kept, input, options);
+  RepairResult result;
+  TetMesh work;
+  work.positions = kept.positions;
+  work.tets = kept.tets;
+  {
+    StageClock clock(result, "manifold");
+    std::unique_ptr<envelope::Envelope> envelope;
+    if (!input.triangles.empty()) {
+      envelope::EnvelopeOptions envelope_options;
+      envelope_options.epsilon = options.epsilon;
+      envelope = envelope::make_envelope(input, envelope_options);
+    }
+    ManifoldFixOptions fix;
+    fix.max_move = kMoveFraction * options.epsilon;
+    fix.max_rounds = options.max_manifold_rounds;
+    result.manifold = make_boundary_manifold(work, envelope.get(), fix);
+  }
+  {
+    StageClock clock(result, "peel");
+    result.surface = extract_boundary(work);
+    result.peeled_faces = result.surface.triangles.size();
+  }
+  if (options.cleanup && !input.triangles.empty()) {
+    StageClock clock(result, "cleanup");
+    result.surface = clean_up(result.surface, input, options, result);
+  }
+  if (!detail::find_boundary_defects(result.surface.triangles).closed_manifold())
+    throw RunError("repair: internal error: the repaired surface is not a closed manifold");
+  return result;
+}
+
+}  // namespace mr::repair

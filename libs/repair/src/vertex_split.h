@@ -1,0 +1,24 @@
+#pragma once
+// Splitting a vertex whose tets fall into several face-connected classes
+// (see manifold_fix.h): the geometric resolution of a non-manifold vertex,
+// or of both ends of a non-manifold edge.
+
+#include "tet_set.h"
+
+namespace mr::repair::detail {
+
+struct SplitContext {
+  TetMesh& mesh;
+  const FaceNeighbours& neighbours;    ///< of mesh.tets
+  const std::vector<FaceRef>& boundary;  ///< boundary_faces(neighbours, ...)
+  double max_move = 0.0;
+};
+
+/// Gives every class of `star` (the tets around v) but the largest its own
+/// copy of v, moved into the interior of that class's largest tet. A class
+/// whose copy finds no valid position (every tet of the class positive, no
+/// improper meeting of the new boundary faces with any boundary face, exact)
+/// keeps v. Returns the number of copies kept.
+std::size_t split_vertex(const SplitContext& context, Index v, std::span<const Index> star);
+
+}  // namespace mr::repair::detail

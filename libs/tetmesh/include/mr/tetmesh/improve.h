@@ -1,0 +1,96 @@
+#pragma once
+// Stage 5 of the pipeline (paper section 3.2): mesh improvement. Local
+// operations (edge split, edge collapse, 3-2 / 2-3 / 4-4 swaps, vertex
+// smoothing) lower the conformal AMIPS energy and bring edges towards the
+// target length. Every operation keeps the contract of the Mesh:
+// - all tets stay strictly positive (exact orient3d on the hybrid positions);
+// - every tracked-surface face it creates or moves stays inside the envelope,
+//   keeps the input-triangle ids of the face(s) it came from, and the
+//   tracked surface keeps its topology (collapses pass a link condition on
+//   the tet mesh and on the tracked surface; swaps never cross tracked faces);
+// - kLocked and kOnBoundary vertices never move; hull (box) vertices only
+//   slide within their box face(s) and are never collapsed away.
+// Operations are applied in a fixed order and the parallel parts work on
+// independent sets, so the result does not depend on the thread count.
+
+#include <mr/envelope/envelope.h>
+#include <mr/tetmesh/logger.h>
+#include <mr/tetmesh/mesh.h>
+
+#include <cstddef>
+
+namespace mr::tetmesh {
+
+struct ImproveOptions {
+  /// Target edge length, absolute (> 0). Edges longer than 4/3 of the local
+  /// target are split, shorter than 4/5 collapsed.
+  double target_edge_length = 0.0;
+  /// Improvement stops once the largest AMIPS energy is below this.
+  double stop_energy = 10.0;
+  /// Upper bound on the number of passes (split, collapse, swap, smooth).
+  int max_passes = 80;
+  /// Worker threads; 0 means all hardware threads. The output is the same
+  /// for every value.
+  int threads = 0;
+  /// Halve the local target length around tets whose energy stays above
+  /// stop_energy after a pass that did not help (the paper's adaptive
+  /// refinement), down to target / min_size_ratio... at most this many times.
+  int max_refinements = 3;
+};
+
+/// Quality of the live tets, measured on the double (approx) positions.
+struct QualitySummary {
+  std::size_t tets = 0;
+  double min_dihedral_deg = 0.0;      ///< smallest dihedral angle of all tets
+  double avg_min_dihedral_deg = 0.0;  ///< mean over tets of their smallest angle
+  double max_amips = 0.0;             ///< 3 for a regular tet
+  double avg_amips = 0.0;
+};
+
+struct ImproveStats {
+  std::size_t splits = 0;
+  std::size_t collapses = 0;
+  std::size_t swaps_32 = 0;
+  std::size_t swaps_23 = 0;
+  std::size_t swaps_44 = 0;
+  std::size_t smoothing_moves = 0;
+  std::size_t refinements = 0;  ///< vertices whose local target was halved
+  int passes = 0;
+  QualitySummary before;
+  QualitySummary after;
+  std::size_t rational_vertices = 0;  ///< live vertices still rational at the end
+};
+
+struct RoundingStats {
+  std::size_t rational_before = 0;
+  std::size_t rounded = 0;       ///< rounded in place (try_round)
+  std::size_t moved = 0;         ///< moved to a nearby double position
+  std::size_t collapsed = 0;     ///< collapsed onto a neighbour with double coordinates
+  std::size_t remaining = 0;     ///< still rational
+};
+
+/// Improves `mesh` in place. Precondition: find_mesh_inconsistency(mesh) == ""
+/// and every tracked face inside `envelope`. Throws mr::UsageError on a
+/// non-positive target edge length or stop energy.
+ImproveStats improve_mesh(Mesh& mesh, const envelope::Envelope& envelope,
+                          const ImproveOptions& options, const Logger& logger = {});
+
+/// Rounds every rational vertex to doubles where no incident tet inverts; a
+/// vertex that cannot be rounded in place is moved to a nearby double
+/// position or collapsed onto a neighbour (same checks as improve_mesh),
+/// then retried. `remaining` says how many are left rational.
+RoundingStats round_vertices(Mesh& mesh, const envelope::Envelope& envelope,
+                             const Logger& logger = {});
+
+/// Quality of the live tets (parallel, deterministic).
+QualitySummary measure_quality(const Mesh& mesh);
+
+/// Splits edge (a, b) at `position` (any point, rational or not, for which
+/// every new tet is strictly positive): each tet around the edge becomes
+/// two. Tracked faces on the edge keep their ids on both halves; the new
+/// vertex gets kOnSurface / kOnBox as the edge. No envelope test here.
+/// Returns the new vertex, or kNoVertex (mesh untouched) when (a, b) is not
+/// an edge or a new tet would not be strictly positive.
+Index split_edge(Mesh& mesh, Index a, Index b, const HybridPoint& position);
+
+}  // namespace mr::tetmesh

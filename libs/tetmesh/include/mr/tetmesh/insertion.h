@@ -1,0 +1,43 @@
+#pragma once
+// Stage 4 of the pipeline: insert every input triangle into the background
+// mesh so that it becomes a union of mesh faces, marked with the triangle's
+// id (the tracked surface). Exact: triangles that cross, overlap coplanar,
+// touch or repeat are all handled by exact predicates on hybrid positions
+// (rational cut points, rounded to doubles wherever no tet inverts).
+
+#include <mr/core/triangle_soup.h>
+#include <mr/tetmesh/logger.h>
+#include <mr/tetmesh/mesh.h>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace mr::tetmesh {
+
+struct InsertionStats {
+  std::size_t inserted = 0;
+  std::size_t degenerate = 0;       ///< skipped: collinear corners, nothing to embed
+  std::size_t cut_tets = 0;
+  std::size_t rebuilt_tets = 0;
+  std::size_t new_tets = 0;
+  std::size_t new_vertices = 0;
+  std::size_t steiner_points = 0;
+  std::size_t skipped = 0;           ///< left out on request (see `skip`)
+  std::size_t rational_vertices = 0; ///< still rational when insertion ended
+  /// Per vertex slot, the id of the triangle whose insertion created the
+  /// vertex; kNoCreator for the vertices of the background mesh.
+  std::vector<std::uint32_t> vertex_creator;
+  static constexpr std::uint32_t kNoCreator = 0xffffffffu;
+};
+
+/// Inserts the triangles of `input` in order; triangle i gets id i.
+/// `input_vertex` maps input vertices to mesh vertices (BackgroundMesh).
+/// Triangles with skip[i] != 0 are left out (`skip` empty: none). Cut
+/// points are left rational: rounding_stage rounds them afterwards.
+/// Throws mr::RunError if an internal consistency check fails.
+InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input,
+                                std::span<const Index> input_vertex, std::span<const char> skip = {},
+                                const Logger& logger = {});
+
+}  // namespace mr::tetmesh

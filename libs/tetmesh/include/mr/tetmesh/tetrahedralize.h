@@ -1,0 +1,45 @@
+#pragma once
+// The whole tetrahedralization pipeline of DESIGN.md (stages 1 to 7) behind
+// one call: simplify the input inside the envelope, build the background
+// mesh, insert every input triangle exactly, improve the mesh, filter by the
+// winding number. Tools (tetrahedralize, meshrepair) are thin wrappers.
+
+#include <mr/core/tet_mesh.h>
+#include <mr/core/triangle_soup.h>
+#include <mr/tetmesh/logger.h>
+#include <mr/tetmesh/options.h>
+#include <mr/tetmesh/stats.h>
+
+namespace mr::tetmesh {
+
+struct PipelineOptions {
+  TetrahedralizeOptions tetrahedralize;
+  /// Keep only the tets inside (winding number); false keeps every tet of
+  /// the box and labels each with its region (tets connected without
+  /// crossing the tracked surface), for multi-material inputs.
+  bool filter = true;
+  /// Run the mesh-improvement stage. meshrepair's fast path turns it off:
+  /// it needs a valid embedding, not well-shaped tets.
+  bool improve = true;
+};
+
+struct PipelineResult {
+  /// Doubles only, every tet positively oriented on these doubles (checked
+  /// exactly before returning). With filter: label 1 on every tet; without:
+  /// the region label of each tet.
+  TetMesh mesh;
+  /// The tracked surface: the mesh faces the input triangles were inserted
+  /// as (after improvement), restricted to the kept tets when filtering.
+  /// Oriented as the input triangle it came from.
+  TriangleSoup tracked_surface;
+  DerivedParameters parameters;
+  PipelineStats stats;
+};
+
+/// Runs the pipeline. Throws mr::UsageError on bad options, mr::RunError
+/// when the input has nothing to mesh or an internal check fails (the
+/// result is never returned unchecked).
+PipelineResult tetrahedralize(const TriangleSoup& input, const PipelineOptions& options,
+                              const Logger& logger = {});
+
+}  // namespace mr::tetmesh

@@ -1,0 +1,175 @@
+// Edge collapse: vertex u is removed and its tets are re-attached to v. The
+// tets around the edge (u, v) disappear and their two faces away from the
+// edge merge (the merged face keeps the ids of both).
+
+#include "improve_local.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mr::tetmesh::improve_detail {
+namespace {
+
+using Edge = std::array<Index, 2>;
+
+// The link of a vertex: vertices, edges and triangles of the faces opposite it.
+struct Link {
+  std::vector<Index> vertices;
+  std::vector<Edge> edges;
+  std::vector<FaceKey> triangles;
+
+  void finish() {
+    std::sort(vertices.begin(), vertices.end());
+    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    std::sort(triangles.begin(), triangles.end());
+  }
+};
+
+Link vertex_link(const Mesh& mesh, std::span<const Index> star, Index v) {
+  Link link;
+  for (const Index t : star) {
+    const FaceKey face = face_key(mesh.face_vertices(t, mesh.corner_of(t, v)));
+    link.vertices.insert(link.vertices.end(), face.begin(), face.end());
+    link.edges.push_back({face[0], face[1]});
+    link.edges.push_back({face[0], face[2]});
+    link.edges.push_back({face[1], face[2]});
+    link.triangles.push_back(face);
+  }
+  link.finish();
+  return link;
+}
+
+// The link of edge (u, v): the edges opposite it in its tets, and their vertices.
+Link edge_link(const Mesh& mesh, std::span<const Index> edge_tets, Index u, Index v) {
+  Link link;
+  for (const Index t : edge_tets) {
+    Edge opposite{};
+    int k = 0;
+    for (const Index w : mesh.tet(t)) {
+      if (w != u && w != v) opposite[k++] = w;
+    }
+    std::sort(opposite.begin(), opposite.end());
+    link.vertices.insert(link.vertices.end(), opposite.begin(), opposite.end());
+    link.edges.push_back(opposite);
+  }
+  link.finish();
+  return link;
+}
+
+template <class T>
+std::vector<T> intersection(const std::vector<T>& a, const std::vector<T>& b) {
+  std::vector<T> out;
+  std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(out));
+  return out;
+}
+
+// lk(u) ∩ lk(v) == lk(uv): the collapse keeps the tet mesh a manifold.
+bool tet_link_condition(const Link& lu, const Link& lv, const Link& luv) {
+  return intersection(lu.vertices, lv.vertices) == luv.vertices &&
+         intersection(lu.edges, lv.edges) == luv.edges && intersection(lu.triangles, lv.triangles).empty();
+}
+
+// Surface neighbours of v (other corners of its tracked faces), sorted.
+std::vector<Index> surface_neighbours(const std::vector<TrackedFace>& faces, Index v) {
+  std::vector<Index> out;
+  for (const TrackedFace& f : faces) {
+    for (const Index w : f.key) {
+      if (w != v) out.push_back(w);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+bool contains(const FaceKey& key, Index v) { return std::find(key.begin(), key.end(), v) != key.end(); }
+
+// The tracked surface around u is a disk (every surface edge at u has two
+// faces), uv is one of its edges, and the surface link condition holds.
+bool surface_allows(const std::vector<TrackedFace>& at_u, const std::vector<TrackedFace>& at_v, Index u,
+                    Index v) {
+  for (const Index x : surface_neighbours(at_u, u)) {
+    const auto faces = std::count_if(at_u.begin(), at_u.end(),
+                                     [&](const TrackedFace& f) { return contains(f.key, x); });
+    if (faces != 2) return false;
+  }
+  std::vector<Index> across;  // third corners of the faces on edge uv
+  for (const TrackedFace& f : at_u) {
+    if (!contains(f.key, v)) continue;
+    for (const Index w : f.key) {
+      if (w != u && w != v) across.push_back(w);
+    }
+  }
+  if (across.size() != 2) return false;
+  std::sort(across.begin(), across.end());
+  return intersection(surface_neighbours(at_u, u), surface_neighbours(at_v, v)) == across;
+}
+
+bool new_edges_short_enough(const Workspace& ws, const Link& lu, const Link& lv, Index u, Index v) {
+  const Vec3d& pv = ws.mesh.position(v).approx;
+  for (const Index x : lu.vertices) {
+    if (x == v || std::binary_search(lv.vertices.begin(), lv.vertices.end(), x)) continue;
+    if ((ws.mesh.position(x).approx - pv).norm() > 4.0 / 3.0 * ws.target(u, x)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool try_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal) {
+  Mesh& mesh = ws.mesh;
+  if (u == v || !mesh.vertex_alive(u) || !mesh.vertex_alive(v)) return false;
+  if ((mesh.flags(u) & (kLocked | kOnBoundary | kOnBox)) != 0) return false;
+  const std::vector<Index> star_u = ws.star(u);
+  std::vector<Index> uv_tets;
+  for (const Index t : star_u) {
+    if (mesh.corner_of(t, v) >= 0) uv_tets.push_back(t);
+  }
+  if (uv_tets.empty() || vertex_on_hull(mesh, star_u, u)) return false;
+
+  std::vector<Tet> new_tets;
+  for (const Index t : star_u) {
+    if (mesh.corner_of(t, v) >= 0) continue;
+    Tet moved = mesh.tet(t);
+    std::replace(moved.begin(), moved.end(), u, v);
+    new_tets.push_back(moved);
+  }
+  const double old_max = max_energy_of(mesh, star_u);
+  const double new_max = max_energy(mesh, new_tets);
+  if (goal == CollapseGoal::quality && new_max > std::max(old_max, ws.stop_energy)) return false;
+  if (!std::isfinite(new_max)) return false;
+
+  const std::vector<Index> star_v = ws.star(v);
+  const Link lu = vertex_link(mesh, star_u, u);
+  const Link lv = vertex_link(mesh, star_v, v);
+  if (!tet_link_condition(lu, lv, edge_link(mesh, uv_tets, u, v))) return false;
+  if (goal == CollapseGoal::quality && !new_edges_short_enough(ws, lu, lv, u, v)) return false;
+  if (!all_positive(mesh, new_tets)) return false;
+
+  const std::vector<TrackedFace> at_u = tracked_faces_at(mesh, star_u, u);
+  if (!at_u.empty()) {
+    if (!surface_allows(at_u, tracked_faces_at(mesh, star_v, v), u, v)) return false;
+    std::vector<FaceCorners> moved_faces;
+    for (const TrackedFace& f : at_u) {
+      if (contains(f.key, v)) continue;
+      FaceCorners corners = f.key;
+      std::replace(corners.begin(), corners.end(), u, v);
+      moved_faces.push_back(corners);
+    }
+    if (!faces_inside(ws, moved_faces)) return false;
+  }
+
+  replace_tets(ws, star_u, new_tets, [u, v](const FaceKey& face, std::vector<FaceKey>& parents) {
+    parents.push_back(face);
+    if (!contains(face, v)) return;
+    FaceKey before = face;
+    std::replace(before.begin(), before.end(), v, u);
+    parents.push_back(face_key(before));
+  });
+  mesh.remove_vertex(u);
+  return true;
+}
+
+}  // namespace mr::tetmesh::improve_detail

@@ -1,0 +1,224 @@
+#include "improve_local.h"
+
+#include <mr/check/tet_check.h>
+#include <mr/core/errors.h>
+#include <mr/tetmesh/incidence.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mr::tetmesh::improve_detail {
+
+FaceKey face_key(std::array<Index, 3> corners) {
+  std::sort(corners.begin(), corners.end());
+  return corners;
+}
+
+Workspace::Workspace(Mesh& mesh_, const envelope::Envelope* envelope_, double target_edge_length_,
+                     double stop_energy_)
+    : mesh(mesh_),
+      envelope(envelope_),
+      target_edge_length(target_edge_length_),
+      stop_energy(stop_energy_),
+      sizing(mesh_.vertex_slots(), 1.0),
+      seed_(mesh_.vertex_slots(), kNoTet) {
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    for (const Index v : mesh.tet(t)) {
+      if (seed_[v] == kNoTet) seed_[v] = t;
+    }
+  }
+}
+
+Index Workspace::find_seed(Index v) {
+  if (v < seed_.size()) {
+    const Index t = seed_[v];
+    if (t != kNoTet && mesh.tet_alive(t) && mesh.corner_of(t, v) >= 0) return t;
+  }
+  // Seeds are refreshed after every edit; this scan is a safety net.
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (mesh.tet_alive(t) && mesh.corner_of(t, v) >= 0) {
+      if (v >= seed_.size()) seed_.resize(std::size_t(v) + 1, kNoTet);
+      seed_[v] = t;
+      return t;
+    }
+  }
+  return kNoTet;
+}
+
+std::vector<Index> Workspace::star(Index v) {
+  if (!mesh.vertex_alive(v)) return {};
+  const Index seed = find_seed(v);
+  if (seed == kNoTet) return {};
+  return tets_around_vertex(mesh, v, seed);
+}
+
+std::vector<Index> Workspace::edge_tets(Index a, Index b) {
+  std::vector<Index> tets = star(a);
+  std::erase_if(tets, [&](Index t) { return mesh.corner_of(t, b) < 0; });
+  return tets;
+}
+
+double Workspace::target(Index a, Index b) const {
+  const double sa = a < sizing.size() ? sizing[a] : 1.0;
+  const double sb = b < sizing.size() ? sizing[b] : 1.0;
+  return target_edge_length * 0.5 * (sa + sb);
+}
+
+void Workspace::note_tets(std::span<const Index> tets) {
+  for (const Index t : tets) {
+    for (const Index v : mesh.tet(t)) {
+      if (v >= seed_.size()) seed_.resize(std::size_t(v) + 1, kNoTet);
+      seed_[v] = t;
+    }
+  }
+}
+
+void Workspace::note_vertex(Index v, double size) {
+  if (v >= sizing.size()) sizing.resize(std::size_t(v) + 1, 1.0);
+  sizing[v] = size;
+}
+
+namespace {
+
+const HybridPoint& corner(const Mesh& mesh, Index v, const Override& moved) {
+  return v == moved.vertex ? *moved.at : mesh.position(v);
+}
+
+}  // namespace
+
+bool all_positive(const Mesh& mesh, std::span<const Tet> tets, Override moved) {
+  for (const Tet& t : tets) {
+    if (orient3d(corner(mesh, t[0], moved), corner(mesh, t[1], moved), corner(mesh, t[2], moved),
+                 corner(mesh, t[3], moved)) <= 0) {
+      return false;
+    }
+  }
+  return true;
+}
+
+double max_energy(const Mesh& mesh, std::span<const Tet> tets, Override moved) {
+  double worst = 0;
+  for (const Tet& t : tets) {
+    const double e = check::amips_energy(corner(mesh, t[0], moved).approx, corner(mesh, t[1], moved).approx,
+                                         corner(mesh, t[2], moved).approx, corner(mesh, t[3], moved).approx);
+    worst = std::max(worst, std::isnan(e) ? std::numeric_limits<double>::infinity() : e);
+  }
+  return worst;
+}
+
+double tet_energy(const Mesh& mesh, Index t) {
+  const Tet& c = mesh.tet(t);
+  const double e = check::amips_energy(mesh.position(c[0]).approx, mesh.position(c[1]).approx,
+                                       mesh.position(c[2]).approx, mesh.position(c[3]).approx);
+  return std::isnan(e) ? std::numeric_limits<double>::infinity() : e;
+}
+
+double max_energy_of(const Mesh& mesh, std::span<const Index> tets) {
+  double worst = 0;
+  for (const Index t : tets) worst = std::max(worst, tet_energy(mesh, t));
+  return worst;
+}
+
+bool faces_inside(const Workspace& ws, std::span<const FaceCorners> faces, Override moved) {
+  if (faces.empty()) return true;
+  if (ws.envelope == nullptr) return false;
+  for (const FaceCorners& f : faces) {
+    if (!ws.envelope->is_inside(corner(ws.mesh, f[0], moved).approx, corner(ws.mesh, f[1], moved).approx,
+                                corner(ws.mesh, f[2], moved).approx)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::vector<TrackedFace> tracked_faces(const Mesh& mesh, std::span<const Index> tets) {
+  std::vector<TrackedFace> faces;
+  for (const Index t : tets) {
+    for (int f = 0; f < 4; ++f) {
+      if (!mesh.is_surface_face(t, f)) continue;
+      const FaceKey key = face_key(mesh.face_vertices(t, f));
+      const bool seen = std::any_of(faces.begin(), faces.end(),
+                                    [&](const TrackedFace& g) { return g.key == key; });
+      if (seen) continue;
+      const auto ids = mesh.surface_ids(t, f);
+      faces.push_back({key, std::vector<std::uint32_t>(ids.begin(), ids.end())});
+    }
+  }
+  return faces;
+}
+
+std::vector<TrackedFace> tracked_faces_at(const Mesh& mesh, std::span<const Index> star, Index v) {
+  std::vector<TrackedFace> faces = tracked_faces(mesh, star);
+  std::erase_if(faces, [&](const TrackedFace& f) {
+    return std::find(f.key.begin(), f.key.end(), v) == f.key.end();
+  });
+  return faces;
+}
+
+std::vector<Index> replace_tets(Workspace& ws, std::span<const Index> old_tets,
+                                std::span<const Tet> new_tets, const ParentFaces& parents) {
+  Mesh& mesh = ws.mesh;
+  const std::vector<TrackedFace> old_faces = tracked_faces(mesh, old_tets);
+  std::vector<Index> around;
+  for (const Index t : old_tets) {
+    for (int f = 0; f < 4; ++f) {
+      const Index u = mesh.neighbour(t, f);
+      if (u != kNoTet && std::find(old_tets.begin(), old_tets.end(), u) == old_tets.end()) {
+        around.push_back(u);
+      }
+    }
+  }
+  for (const Index t : old_tets) mesh.remove_tet(t);
+  std::vector<Index> added;
+  added.reserve(new_tets.size());
+  for (const Tet& t : new_tets) added.push_back(mesh.add_tet(t));
+
+  std::vector<Index> linked = added;
+  linked.insert(linked.end(), around.begin(), around.end());
+  mesh.connect(linked);
+
+  std::vector<FaceKey> sources;
+  std::vector<std::uint32_t> ids;
+  for (const Index t : added) {
+    for (int f = 0; f < 4; ++f) {
+      sources.clear();
+      parents(face_key(mesh.face_vertices(t, f)), sources);
+      ids.clear();
+      for (const FaceKey& source : sources) {
+        for (const TrackedFace& old : old_faces) {
+          if (old.key == source) ids.insert(ids.end(), old.ids.begin(), old.ids.end());
+        }
+      }
+      if (!ids.empty()) mesh.set_surface_ids(t, f, ids);
+    }
+  }
+  ws.note_tets(around);
+  ws.note_tets(added);
+  return added;
+}
+
+bool edge_on_hull(const Mesh& mesh, std::span<const Index> tets, Index a, Index b) {
+  for (const Index t : tets) {
+    for (int f = 0; f < 4; ++f) {
+      if (mesh.neighbour(t, f) != kNoTet) continue;
+      const Index opposite = mesh.tet(t)[f];
+      if (opposite != a && opposite != b && mesh.corner_of(t, a) >= 0 && mesh.corner_of(t, b) >= 0) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+bool vertex_on_hull(const Mesh& mesh, std::span<const Index> tets, Index v) {
+  for (const Index t : tets) {
+    for (int f = 0; f < 4; ++f) {
+      if (mesh.neighbour(t, f) == kNoTet && mesh.tet(t)[f] != v && mesh.corner_of(t, v) >= 0) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace mr::tetmesh::improve_detail

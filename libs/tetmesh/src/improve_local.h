@@ -1,0 +1,132 @@
+#pragma once
+// Shared machinery of the mesh-improvement operations (improve_*.cpp): the
+// workspace (mesh, envelope, a seed tet per vertex to find stars, the local
+// sizing), star queries, the exact and envelope checks every operation runs
+// before it edits anything, and the one routine that replaces a cavity of
+// tets while carrying the tracked-surface ids over.
+
+#include <mr/envelope/envelope.h>
+#include <mr/tetmesh/improve.h>
+#include <mr/tetmesh/mesh.h>
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace mr::tetmesh::improve_detail {
+
+using FaceKey = std::array<Index, 3>;  ///< sorted corners of a face
+FaceKey face_key(std::array<Index, 3> corners);
+
+/// A face replaced or moved by an operation: its corners (any order).
+using FaceCorners = std::array<Index, 3>;
+
+/// Stands for the not-yet-created vertex of a split in the checks below.
+inline constexpr Index kNewVertex = kNoVertex - 1;
+
+class Workspace {
+ public:
+  /// `envelope` may be null: no tracked face may then move or change.
+  Workspace(Mesh& mesh, const envelope::Envelope* envelope, double target_edge_length,
+            double stop_energy);
+
+  Mesh& mesh;
+  const envelope::Envelope* envelope;
+  double target_edge_length;
+  double stop_energy;
+  /// Per vertex slot: scale of the local target length (1: the global target).
+  std::vector<double> sizing;
+
+  /// The live tets around v, sorted. Empty for a vertex no tet uses.
+  std::vector<Index> star(Index v);
+  /// The tets containing edge (a, b), sorted; empty if it is not an edge.
+  std::vector<Index> edge_tets(Index a, Index b);
+  /// Target length of edge (a, b) under the local sizing.
+  double target(Index a, Index b) const;
+  /// Records that `tets` are live and use their corners (after an edit).
+  void note_tets(std::span<const Index> tets);
+  void note_vertex(Index v, double size);
+
+ private:
+  Index find_seed(Index v);
+  std::vector<Index> seed_;
+};
+
+/// Position of corner v, with vertex `moved` (or kNewVertex) replaced by `at`.
+struct Override {
+  Index vertex = kNoVertex;
+  const HybridPoint* at = nullptr;
+};
+
+/// Every tet strictly positive, exactly, on the hybrid positions.
+bool all_positive(const Mesh& mesh, std::span<const Tet> tets, Override moved = {});
+/// AMIPS energies on the double positions (+inf for flat or inverted).
+double max_energy(const Mesh& mesh, std::span<const Tet> tets, Override moved = {});
+double max_energy_of(const Mesh& mesh, std::span<const Index> tets);
+double tet_energy(const Mesh& mesh, Index t);
+/// Every face inside the envelope (true when there are none; false when
+/// there are some and no envelope).
+bool faces_inside(const Workspace& ws, std::span<const FaceCorners> faces, Override moved = {});
+
+/// Tracked faces (as sorted keys with their ids) of a set of tets, each once.
+struct TrackedFace {
+  FaceKey key;
+  std::vector<std::uint32_t> ids;
+};
+std::vector<TrackedFace> tracked_faces(const Mesh& mesh, std::span<const Index> tets);
+/// The tracked faces among them that contain vertex v.
+std::vector<TrackedFace> tracked_faces_at(const Mesh& mesh, std::span<const Index> star, Index v);
+
+/// For a face of a new tet, the faces of the old tets it came from (their
+/// ids are united onto it); leave empty for a face that is new.
+using ParentFaces = std::function<void(const FaceKey& face, std::vector<FaceKey>& parents)>;
+
+/// Removes `old_tets`, adds `new_tets`, re-links them with the tets around
+/// the cavity and gives each new face the ids of its parents. The caller has
+/// checked that the new tets fill the cavity and are positive. Returns the
+/// new tets.
+std::vector<Index> replace_tets(Workspace& ws, std::span<const Index> old_tets,
+                                std::span<const Tet> new_tets, const ParentFaces& parents);
+
+/// True when a face of one of `tets` containing both a and b lies on the hull.
+bool edge_on_hull(const Mesh& mesh, std::span<const Index> tets, Index a, Index b);
+/// True when some face of `tets` containing v lies on the hull.
+bool vertex_on_hull(const Mesh& mesh, std::span<const Index> tets, Index v);
+
+// ---- operations (each in its own improve_*.cpp) ----
+
+/// Splits edge (a, b) at its midpoint if allowed; returns the new vertex or kNoVertex.
+Index try_split(Workspace& ws, Index a, Index b, const HybridPoint& at, bool check_envelope);
+
+enum class CollapseGoal { quality, rounding };
+/// Collapses u onto v if every check passes.
+bool try_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal);
+
+/// Edge removal (3-2 or 4-4) of edge (a, b); returns 32, 44 or 0.
+int try_edge_swap(Workspace& ws, Index a, Index b);
+/// Face removal (2-3) of face `f` of tet `t`.
+bool try_face_swap(Workspace& ws, Index t, int f);
+
+/// Moves v to lower the AMIPS energy of its star (Newton with line search)
+/// within its constraints. `star` are its tets. Touches only v's position.
+bool try_smooth(const Workspace& ws, Index v, std::span<const Index> star);
+/// Moves a rational vertex to a nearby double position keeping its star
+/// positive and its tracked faces in the envelope.
+bool try_relocate(const Workspace& ws, Index v, std::span<const Index> star);
+/// Drops the rational part of v when its nearest doubles keep the star positive.
+bool try_round_in_place(Workspace& ws, Index v);
+
+// ---- passes (improve_passes.cpp); each returns the number of operations done ----
+std::size_t split_pass(Workspace& ws);
+std::size_t collapse_pass(Workspace& ws);
+struct SwapCounts {
+  std::size_t s32 = 0, s23 = 0, s44 = 0;
+};
+SwapCounts swap_pass(Workspace& ws);
+std::size_t smooth_pass(Workspace& ws);
+/// Energy of every live tet slot (0 for removed slots), in parallel.
+std::vector<double> tet_energies(const Mesh& mesh);
+
+}  // namespace mr::tetmesh::improve_detail

@@ -1,0 +1,169 @@
+// One pass of each operation over the whole mesh. Candidates are collected
+// and sorted first (ties broken by vertex or tet index) and applied one by
+// one, so the order never depends on the thread count; smoothing runs in
+// parallel on colour classes of vertices that share no tet.
+
+#include "improve_local.h"
+
+#include <mr/tetmesh/incidence.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <tuple>
+
+namespace mr::tetmesh::improve_detail {
+namespace {
+
+struct EdgeCandidate {
+  double length;
+  Index a, b;
+};
+
+std::vector<std::array<Index, 2>> all_edges(const Mesh& mesh) {
+  std::vector<std::array<Index, 2>> edges;
+  edges.reserve(mesh.num_tets() * 6);
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    const Tet& c = mesh.tet(t);
+    for (int i = 0; i < 4; ++i) {
+      for (int j = i + 1; j < 4; ++j) edges.push_back({std::min(c[i], c[j]), std::max(c[i], c[j])});
+    }
+  }
+  tbb::parallel_sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+double edge_length(const Mesh& mesh, Index a, Index b) {
+  return (mesh.position(a).approx - mesh.position(b).approx).norm();
+}
+
+// Edges whose length relative to their target passes `keep`, sorted by length
+// (longest first when `longest_first`), ties by vertex index.
+template <class Keep>
+std::vector<EdgeCandidate> edge_candidates(const Workspace& ws, Keep keep, bool longest_first) {
+  std::vector<EdgeCandidate> out;
+  for (const auto& [a, b] : all_edges(ws.mesh)) {
+    const double length = edge_length(ws.mesh, a, b);
+    if (keep(length, ws.target(a, b))) out.push_back({length, a, b});
+  }
+  std::sort(out.begin(), out.end(), [&](const EdgeCandidate& x, const EdgeCandidate& y) {
+    if (x.length != y.length) return longest_first ? x.length > y.length : x.length < y.length;
+    return std::tie(x.a, x.b) < std::tie(y.a, y.b);
+  });
+  return out;
+}
+
+// Greedy colouring in vertex order: no two vertices of one colour share a tet.
+std::vector<std::vector<Index>> colour_classes(const Mesh& mesh, const VertexTets& incidence) {
+  std::vector<int> colour(mesh.vertex_slots(), -1);
+  std::vector<std::vector<Index>> classes;
+  std::vector<char> used;
+  for (Index v = 0; v < mesh.vertex_slots(); ++v) {
+    if (!mesh.vertex_alive(v) || incidence.of(v).empty()) continue;
+    used.assign(classes.size() + 1, 0);
+    for (const Index t : incidence.of(v)) {
+      for (const Index w : mesh.tet(t)) {
+        if (colour[w] >= 0) used[colour[w]] = 1;
+      }
+    }
+    const int c = int(std::find(used.begin(), used.end(), 0) - used.begin());
+    if (c == int(classes.size())) classes.emplace_back();
+    colour[v] = c;
+    classes[c].push_back(v);
+  }
+  return classes;
+}
+
+}  // namespace
+
+std::vector<double> tet_energies(const Mesh& mesh) {
+  std::vector<double> energy(mesh.tet_slots(), 0.0);
+  tbb::parallel_for(tbb::blocked_range<Index>(0, Index(mesh.tet_slots()), 1024),
+                    [&](const tbb::blocked_range<Index>& range) {
+                      for (Index t = range.begin(); t != range.end(); ++t) {
+                        if (mesh.tet_alive(t)) energy[t] = tet_energy(mesh, t);
+                      }
+                    });
+  return energy;
+}
+
+std::size_t split_pass(Workspace& ws) {
+  std::size_t done = 0;
+  const auto long_edge = [](double length, double target) { return length > 4.0 / 3.0 * target; };
+  for (const EdgeCandidate& e : edge_candidates(ws, long_edge, true)) {
+    const Vec3d middle = 0.5 * (ws.mesh.position(e.a).approx + ws.mesh.position(e.b).approx);
+    if (try_split(ws, e.a, e.b, HybridPoint(middle), true) != kNoVertex) ++done;
+  }
+  return done;
+}
+
+std::size_t collapse_pass(Workspace& ws) {
+  std::size_t done = 0;
+  const auto short_edge = [](double length, double target) { return length < 0.8 * target; };
+  for (const EdgeCandidate& e : edge_candidates(ws, short_edge, false)) {
+    if (!ws.mesh.vertex_alive(e.a) || !ws.mesh.vertex_alive(e.b)) continue;
+    // The edge may have grown since the candidates were collected.
+    if (edge_length(ws.mesh, e.a, e.b) >= 0.8 * ws.target(e.a, e.b)) continue;
+    if (try_collapse(ws, e.a, e.b, CollapseGoal::quality) ||
+        try_collapse(ws, e.b, e.a, CollapseGoal::quality)) {
+      ++done;
+    }
+  }
+  return done;
+}
+
+SwapCounts swap_pass(Workspace& ws) {
+  constexpr double kWorthSwapping = 4.0;  // a regular tet has 3
+  const Mesh& mesh = ws.mesh;
+  const std::vector<double> energy = tet_energies(mesh);
+  std::vector<std::pair<double, Index>> bad;
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (mesh.tet_alive(t) && energy[t] > kWorthSwapping) bad.emplace_back(-energy[t], t);
+  }
+  std::sort(bad.begin(), bad.end());
+  std::vector<Tet> corners;
+  for (const auto& [minus_energy, t] : bad) corners.push_back(mesh.tet(t));
+
+  SwapCounts counts;
+  for (std::size_t i = 0; i < bad.size(); ++i) {
+    const Index t = bad[i].second;
+    // Slots are reused: the tet must still be the one collected.
+    if (!mesh.tet_alive(t) || mesh.tet(t) != corners[i]) continue;
+    bool swapped = false;
+    const Tet c = corners[i];
+    for (int x = 0; x < 4 && !swapped; ++x) {
+      for (int y = x + 1; y < 4 && !swapped; ++y) {
+        const int kind = try_edge_swap(ws, c[x], c[y]);
+        counts.s32 += kind == 32;
+        counts.s44 += kind == 44;
+        swapped = kind != 0;
+      }
+    }
+    for (int f = 0; f < 4 && !swapped; ++f) {
+      swapped = try_face_swap(ws, t, f);
+      counts.s23 += swapped;
+    }
+  }
+  return counts;
+}
+
+std::size_t smooth_pass(Workspace& ws) {
+  const VertexTets incidence(ws.mesh);
+  std::vector<char> moved(ws.mesh.vertex_slots(), 0);
+  for (const std::vector<Index>& vertices : colour_classes(ws.mesh, incidence)) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertices.size(), 64),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                          const Index v = vertices[i];
+                          moved[v] = try_smooth(ws, v, incidence.of(v)) ? 1 : 0;
+                        }
+                      });
+  }
+  return std::size_t(std::count(moved.begin(), moved.end(), 1));
+}
+
+}  // namespace mr::tetmesh::improve_detail

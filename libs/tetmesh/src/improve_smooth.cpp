@@ -1,0 +1,248 @@
+// Vertex smoothing: Newton steps on the summed conformal AMIPS energy of a
+// vertex's tets, with a backtracking line search that accepts only positions
+// keeping every tet strictly positive (exact), the star's largest energy not
+// higher, and the vertex's tracked faces inside the envelope. Surface
+// vertices move in their tangent plane, hull vertices within their box
+// face(s); vertices on surface boundaries, creases, or flagged locked stay.
+
+#include "improve_local.h"
+
+#include <mr/kernel/rounding.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mr::tetmesh::improve_detail {
+namespace {
+
+using Mat3 = Eigen::Matrix3d;
+
+// One tet of the star seen from the moving vertex: the other three corners,
+// ordered so that the tet is positive when orient3d(p, b, c, d) > 0.
+struct Opposite {
+  Vec3d b, c, d;
+};
+
+// Sum of AMIPS energies with gradient and Hessian in p. AMIPS = N / D^(2/3)
+// with N = (sum of squared edges) / 2 and D = sqrt(2) * 6 * volume: the
+// closed form of tr(J^T J) / det(J)^(2/3) against the regular unit tet.
+struct EnergyTerms {
+  double value = 0, max = 0;
+  Vec3d gradient = Vec3d::Zero();
+  Mat3 hessian = Mat3::Zero();
+  bool finite = true;
+};
+
+EnergyTerms star_energy(const Vec3d& p, std::span<const Opposite> tets, bool derivatives) {
+  EnergyTerms out;
+  for (const Opposite& o : tets) {
+    const Vec3d n = (o.c - o.b).cross(o.d - o.b);
+    const double det = std::sqrt(2.0) * (o.b - p).dot((o.c - p).cross(o.d - p));
+    if (!(det > 0)) {
+      out.finite = false;
+      return out;
+    }
+    const double sq = (p - o.b).squaredNorm() + (p - o.c).squaredNorm() + (p - o.d).squaredNorm() +
+                      (o.b - o.c).squaredNorm() + (o.c - o.d).squaredNorm() + (o.d - o.b).squaredNorm();
+    const double N = 0.5 * sq;
+    const double d23 = std::cbrt(det * det);
+    const double e = N / d23;
+    out.value += e;
+    out.max = std::max(out.max, e);
+    if (!derivatives) continue;
+    const Vec3d gN = 3 * p - (o.b + o.c + o.d);
+    const Vec3d gD = -std::sqrt(2.0) * n;
+    out.gradient += gN / d23 - (2.0 / 3.0) * N * gD / (d23 * det);
+    out.hessian += 3 * Mat3::Identity() / d23 -
+                   (2.0 / 3.0) / (d23 * det) * (gN * gD.transpose() + gD * gN.transpose()) +
+                   (10.0 / 9.0) * N / (d23 * det * det) * gD * gD.transpose();
+  }
+  if (!std::isfinite(out.value)) out.finite = false;
+  return out;
+}
+
+// Where the vertex may go: nowhere, or p + d with d restricted as below.
+struct Freedom {
+  bool fixed = false;
+  std::array<bool, 3> frozen_axis{false, false, false};  ///< box faces the vertex lies on
+  bool tangent = false;                                  ///< stay in the plane of `normal`
+  Vec3d normal = Vec3d::Zero();
+  std::vector<FaceCorners> tracked;  ///< its tracked faces, checked against the envelope
+};
+
+Vec3d unit_normal(const Mesh& mesh, const FaceKey& f) {
+  const Vec3d& a = mesh.position(f[0]).approx;
+  return (mesh.position(f[1]).approx - a).cross(mesh.position(f[2]).approx - a).normalized();
+}
+
+// Surface around v: a disk (two faces on each surface edge) that is nearly flat.
+bool surface_freedom(const Mesh& mesh, const std::vector<TrackedFace>& faces, Index v, Freedom& out) {
+  constexpr double kMinCosine = 0.866;  // creases sharper than 30 degrees stay put
+  std::vector<Index> neighbours;
+  for (const TrackedFace& f : faces) {
+    for (const Index w : f.key) {
+      if (w != v) neighbours.push_back(w);
+    }
+  }
+  std::sort(neighbours.begin(), neighbours.end());
+  for (std::size_t i = 0; i < neighbours.size();) {
+    std::size_t j = i;
+    while (j < neighbours.size() && neighbours[j] == neighbours[i]) ++j;
+    if (j - i != 2) return false;
+    i = j;
+  }
+  const Vec3d first = unit_normal(mesh, faces[0].key);
+  Vec3d sum = Vec3d::Zero();
+  std::vector<Vec3d> normals;
+  for (const TrackedFace& f : faces) {
+    Vec3d n = unit_normal(mesh, f.key);
+    if (n.dot(first) < 0) n = -n;
+    if (!n.allFinite()) return false;
+    normals.push_back(n);
+    sum += n;
+  }
+  const Vec3d average = sum.normalized();
+  for (const Vec3d& n : normals) {
+    if (n.dot(average) < kMinCosine) return false;
+  }
+  out.tangent = true;
+  out.normal = average;
+  for (const TrackedFace& f : faces) out.tracked.push_back(f.key);
+  return true;
+}
+
+Freedom freedom_of(const Mesh& mesh, Index v, std::span<const Index> star) {
+  Freedom out;
+  if ((mesh.flags(v) & (kLocked | kOnBoundary)) != 0 || star.empty()) {
+    out.fixed = true;
+    return out;
+  }
+  bool on_hull = false;
+  for (const Index t : star) {
+    for (int f = 0; f < 4; ++f) {
+      if (mesh.neighbour(t, f) != kNoTet || mesh.tet(t)[f] == v || mesh.corner_of(t, v) < 0) continue;
+      on_hull = true;
+      const std::array<Index, 3> c = mesh.face_vertices(t, f);
+      bool any = false;
+      for (int axis = 0; axis < 3; ++axis) {
+        const double x = mesh.position(c[0]).approx[axis];
+        if (mesh.position(c[1]).approx[axis] == x && mesh.position(c[2]).approx[axis] == x) {
+          out.frozen_axis[axis] = any = true;
+        }
+      }
+      if (!any) out.fixed = true;  // a hull face off the box planes: do not touch
+    }
+  }
+  if (mesh.has_flag(v, kOnBox) && !on_hull) out.fixed = true;
+  const std::vector<TrackedFace> faces = tracked_faces_at(mesh, star, v);
+  if (!faces.empty() && (on_hull || !surface_freedom(mesh, faces, v, out))) out.fixed = true;
+  return out;
+}
+
+Vec3d restrict_step(Vec3d d, const Freedom& freedom) {
+  if (freedom.tangent) d -= d.dot(freedom.normal) * freedom.normal;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (freedom.frozen_axis[axis]) d[axis] = 0;
+  }
+  return d;
+}
+
+std::vector<Opposite> opposites(const Mesh& mesh, Index v, std::span<const Index> star) {
+  std::vector<Opposite> out;
+  out.reserve(star.size());
+  for (const Index t : star) {
+    const std::array<Index, 3> o = opposite_face(mesh.tet(t), mesh.corner_of(t, v));
+    out.push_back({mesh.position(o[0]).approx, mesh.position(o[1]).approx, mesh.position(o[2]).approx});
+  }
+  return out;
+}
+
+// The Newton direction, or the scaled descent direction when the Hessian
+// (restricted to the free directions) is not positive definite.
+Vec3d step_direction(const EnergyTerms& at, const Freedom& freedom, double scale) {
+  const Vec3d g = restrict_step(at.gradient, freedom);
+  if (g.squaredNorm() == 0 || !g.allFinite()) return Vec3d::Zero();
+  Mat3 h = at.hessian;
+  Mat3 projector = Mat3::Identity();
+  if (freedom.tangent) projector -= freedom.normal * freedom.normal.transpose();
+  for (int axis = 0; axis < 3; ++axis) {
+    if (freedom.frozen_axis[axis]) projector.row(axis).setZero();
+  }
+  h = projector * h * projector.transpose() + (Mat3::Identity() - projector * projector.transpose());
+  const Eigen::LDLT<Mat3> solver(h);
+  if (solver.info() == Eigen::Success && solver.isPositive()) {
+    const Vec3d d = restrict_step(solver.solve(-g), freedom);
+    if (d.allFinite() && d.dot(g) < 0 && d.norm() < 10 * scale) return d;
+  }
+  return -g.normalized() * (0.1 * scale);
+}
+
+// Accepts p when it keeps the star valid and its tracked faces inside.
+bool valid_position(const Workspace& ws, Index v, std::span<const Index> star, const Vec3d& p,
+                    const Freedom& freedom) {
+  std::vector<Tet> tets;
+  tets.reserve(star.size());
+  for (const Index t : star) tets.push_back(ws.mesh.tet(t));
+  const HybridPoint at(p);
+  return all_positive(ws.mesh, tets, {v, &at}) && faces_inside(ws, freedom.tracked, {v, &at});
+}
+
+double average_edge(const std::vector<Opposite>& tets, const Vec3d& p) {
+  double sum = 0;
+  for (const Opposite& o : tets) sum += (o.b - p).norm() + (o.c - p).norm() + (o.d - p).norm();
+  return sum / double(3 * tets.size());
+}
+
+}  // namespace
+
+bool try_smooth(const Workspace& ws, Index v, std::span<const Index> star) {
+  const Freedom freedom = freedom_of(ws.mesh, v, star);
+  if (freedom.fixed) return false;
+  const std::vector<Opposite> tets = opposites(ws.mesh, v, star);
+  const Vec3d p0 = ws.mesh.position(v).approx;
+  const EnergyTerms before = star_energy(p0, tets, true);
+  if (!before.finite) return false;
+  const Vec3d d = step_direction(before, freedom, average_edge(tets, p0));
+  if (d.squaredNorm() == 0) return false;
+  for (double s = 1; s > 1.0 / 1024; s /= 2) {
+    Vec3d p = p0 + s * d;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (freedom.frozen_axis[axis]) p[axis] = p0[axis];
+    }
+    if (p == p0) break;
+    const EnergyTerms after = star_energy(p, tets, false);
+    if (!after.finite || after.value >= before.value || after.max > before.max) continue;
+    if (!valid_position(ws, v, star, p, freedom)) continue;
+    ws.mesh.position(v) = HybridPoint(p);
+    return true;
+  }
+  return false;
+}
+
+bool try_relocate(const Workspace& ws, Index v, std::span<const Index> star) {
+  const Freedom freedom = freedom_of(ws.mesh, v, star);
+  if (freedom.fixed) return false;
+  const Vec3d p0 = ws.mesh.position(v).approx;
+  Vec3d centre = Vec3d::Zero();
+  const std::vector<Opposite> tets = opposites(ws.mesh, v, star);
+  for (const Opposite& o : tets) centre += (o.b + o.c + o.d) / 3.0;
+  centre /= double(tets.size());
+  const Vec3d d = restrict_step(centre - p0, freedom);
+  // Tiny moves first: the rational point is usually a rounding error away
+  // from a position that works.
+  for (double s = 0x1p-40; s <= 0.5; s *= 16) {
+    Vec3d p = p0 + s * d;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (freedom.frozen_axis[axis]) p[axis] = p0[axis];
+    }
+    if (!star_energy(p, tets, false).finite || !valid_position(ws, v, star, p, freedom)) continue;
+    ws.mesh.position(v) = HybridPoint(p);
+    return true;
+  }
+  return false;
+}
+
+}  // namespace mr::tetmesh::improve_detail

@@ -1,0 +1,152 @@
+#include <mr/tetmesh/tetrahedralize.h>
+
+#include "regions.h"
+#include "rounding_stage.h"
+
+#include <mr/core/errors.h>
+#include <mr/simplify/simplify.h>
+#include <mr/spatial/aabb_tree.h>
+#include <mr/tetmesh/background_mesh.h>
+#include <mr/tetmesh/convert.h>
+#include <mr/tetmesh/insertion.h>
+#include <mr/tetmesh/winding_filter.h>
+
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+
+#include <string>
+
+namespace mr::tetmesh {
+namespace {
+
+// The paper simplifies with a smaller envelope than the one the mesh must
+// respect, leaving room for the later stages (fTetWild: 0.8 epsilon).
+constexpr double kSimplifyEpsilonFraction = 0.8;
+
+TriangleSoup simplified_input(const TriangleSoup& input, const PipelineOptions& options,
+                              const DerivedParameters& derived, PipelineStats& stats, const Logger& logger) {
+  StageTimer timer(stats, "simplify", logger);
+  if (options.tetrahedralize.skip_simplify) {
+    timer.stage().count("faces", static_cast<std::int64_t>(input.triangles.size()));
+    return input;
+  }
+  simplify::SimplifyOptions simplify_options;
+  simplify_options.epsilon_abs = kSimplifyEpsilonFraction * derived.epsilon;
+  simplify_options.threads = options.tetrahedralize.threads;
+  simplify::SimplifyResult result = simplify::simplify_in_envelope(input, simplify_options);
+  timer.stage().count("faces_before", static_cast<std::int64_t>(result.faces_before));
+  timer.stage().count("faces", static_cast<std::int64_t>(result.faces_after));
+  return std::move(result.soup);
+}
+
+void count(StageTimer& timer, const char* key, std::size_t value) {
+  timer.stage().count(key, static_cast<std::int64_t>(value));
+}
+
+// Insertions to try before giving up: after a failed rounding, the
+// triangles that created the stuck points are left out and the embedding
+// starts over from a fresh background mesh.
+constexpr int kEmbeddingAttempts = 4;
+
+Mesh embed(const TriangleSoup& surface, const DerivedParameters& derived, const PipelineOptions& options,
+           PipelineStats& stats, const Logger& logger) {
+  std::vector<char> skip(surface.triangles.size(), 0);
+  for (int attempt = 1;; ++attempt) {
+    BackgroundMesh background;
+    {
+      StageTimer timer(stats, "background", logger);
+      background = build_background_mesh(surface, spatial::AabbTree(surface),
+                                         background_parameters(derived, options.tetrahedralize.threads));
+      count(timer, "vertices", background.mesh.num_vertices());
+      count(timer, "tets", background.mesh.num_tets());
+    }
+    Mesh& mesh = background.mesh;
+    InsertionStats inserted;
+    {
+      StageTimer timer(stats, "insertion", logger);
+      inserted = insert_triangles(mesh, surface, background.input_vertex, skip, logger);
+      count(timer, "triangles", inserted.inserted);
+      count(timer, "degenerate_skipped", inserted.degenerate);
+      count(timer, "left_out", inserted.skipped);
+      count(timer, "cut_points", inserted.new_vertices);
+      count(timer, "steiner_points", inserted.steiner_points);
+      count(timer, "tets", mesh.num_tets());
+    }
+    StageTimer timer(stats, "rounding", logger);
+    // A cut point closer than this to a neighbour may be merged with it: far
+    // below epsilon, so the tracked surface stays in the envelope.
+    const detail::RoundingCounters rounding = detail::round_or_collapse(mesh, 1e-3 * derived.epsilon);
+    count(timer, "rounded", rounding.rounded);
+    count(timer, "collapsed", rounding.collapsed);
+    count(timer, "rational_vertices", rounding.remaining);
+    if (rounding.remaining == 0) return std::move(mesh);
+    std::size_t newly_skipped = 0;
+    for (Index v = 0; v < mesh.vertex_slots(); ++v) {
+      if (!mesh.vertex_alive(v) || !mesh.position(v).is_exact()) continue;
+      const std::uint32_t creator = inserted.vertex_creator[v];
+      if (creator != InsertionStats::kNoCreator && skip[creator] == 0) {
+        skip[creator] = 1;
+        ++newly_skipped;
+      }
+    }
+    if (attempt == kEmbeddingAttempts || newly_skipped == 0) {
+      throw RunError(std::to_string(rounding.remaining) + " cut points could not be rounded to doubles "
+                     "without inverting a tet; the mesh is not written");
+    }
+    logger.log(LogLevel::warning, std::to_string(rounding.remaining) + " cut points could not be rounded: "
+               "inserting again without the " + std::to_string(newly_skipped) + " triangles that made them");
+  }
+}
+
+PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, const Logger& logger) {
+  PipelineResult result;
+  result.parameters = derive_parameters(options.tetrahedralize, input);
+  const DerivedParameters& derived = result.parameters;
+  const TriangleSoup surface = simplified_input(input, options, derived, result.stats, logger);
+
+  Mesh mesh = embed(surface, derived, options, result.stats, logger);
+
+  std::vector<char> keep;
+  {
+    StageTimer timer(result.stats, "filter", logger);
+    if (options.filter) {
+      const TetClassification classes =
+          classify_tets(mesh, WindingNumberTree(input), options.tetrahedralize.winding_rule);
+      keep = classes.keep;
+      count(timer, "kept_tets", classes.kept);
+    }
+  }
+  {
+    StageTimer timer(result.stats, "output", logger);
+    if (options.filter) {
+      result.mesh = extract_tets(mesh, keep);
+      result.mesh.tet_labels.assign(result.mesh.tets.size(), 1);
+    } else {
+      const std::vector<std::int32_t> labels = detail::region_labels(mesh);
+      result.mesh = to_tet_mesh(mesh);
+      for (Index t = 0; t < mesh.tet_slots(); ++t) {
+        if (mesh.tet_alive(t)) result.mesh.tet_labels.push_back(labels[t]);
+      }
+    }
+    result.tracked_surface = detail::tracked_surface(mesh, keep, surface);
+    const std::size_t bad = detail::count_non_positive_tets(result.mesh);
+    if (bad != 0) {
+      throw RunError(std::to_string(bad) + " tets are not positively oriented on the written "
+                     "coordinates (internal error); the mesh is not written");
+    }
+    count(timer, "tets", result.mesh.tets.size());
+    count(timer, "vertices", result.mesh.positions.size());
+  }
+  return result;
+}
+
+}  // namespace
+
+PipelineResult tetrahedralize(const TriangleSoup& input, const PipelineOptions& options, const Logger& logger) {
+  const int threads = options.tetrahedralize.threads > 0 ? options.tetrahedralize.threads
+                                                         : tbb::info::default_concurrency();
+  tbb::task_arena arena(threads);
+  return arena.execute([&] { return run(input, options, logger); });
+}
+
+}  // namespace mr::tetmesh

@@ -1,0 +1,578 @@
+#include "triangle_inserter.h"
+
+#include <mr/core/errors.h>
+#include <mr/kernel/constructions.h>
+
+#include <algorithm>
+
+namespace mr::tetmesh::detail {
+namespace {
+
+constexpr std::array<std::array<int, 2>, 6> kTetEdges{{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
+
+std::uint64_t segment_key(Index u, Index v) {
+  if (u > v) std::swap(u, v);
+  return (static_cast<std::uint64_t>(u) << 32) | v;
+}
+
+std::array<Index, 3> sorted_corners(std::array<Index, 3> c) {
+  std::sort(c.begin(), c.end());
+  return c;
+}
+
+// Whether (p, q, r) is the cycle (x, y, z) with the same orientation.
+bool same_orientation(const std::array<Index, 3>& a, const std::array<Index, 3>& b) {
+  for (int i = 0; i < 3; ++i) {
+    if (a[i] == b[0]) return a[(i + 1) % 3] == b[1];
+  }
+  return false;
+}
+
+std::vector<std::uint32_t> with_id(std::vector<std::uint32_t> ids, std::uint32_t id) {
+  if (std::find(ids.begin(), ids.end(), id) == ids.end()) {
+    ids.insert(std::upper_bound(ids.begin(), ids.end(), id), id);
+  }
+  return ids;
+}
+
+}  // namespace
+
+TriangleInserter::TriangleInserter(Mesh& mesh) : mesh_(mesh) {
+  seed_tet_.assign(mesh.vertex_slots(), kNoTet);
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    for (Index v : mesh.tet(t)) seed_tet_[v] = t;
+  }
+}
+
+bool TriangleInserter::stamped(std::vector<std::uint32_t>& stamps, Index t) const {
+  return t < stamps.size() && stamps[t] == generation_;
+}
+
+void TriangleInserter::stamp(std::vector<std::uint32_t>& stamps, Index t) {
+  if (stamps.size() <= t) stamps.resize(std::max<std::size_t>(t + 1, mesh_.tet_slots()), 0);
+  stamps[t] = generation_;
+}
+
+void TriangleInserter::note_new_vertex(Index v) {
+  if (seed_tet_.size() <= v) seed_tet_.resize(v + 1, kNoTet);
+  if (creator_.size() <= v) creator_.resize(v + 1, kNoCreator);
+  creator_[v] = id_;
+}
+
+// ---------------------------------------------------------------- the plane
+
+bool TriangleInserter::set_up_plane(Index a, Index b, Index c, std::uint32_t id) {
+  if (a == b || b == c || c == a) return false;
+  const HybridPoint& pa = mesh_.position(a);
+  const HybridPoint& pb = mesh_.position(b);
+  const HybridPoint& pc = mesh_.position(c);
+  if (collinear(pa, pb, pc)) return false;
+  ++generation_;
+  id_ = id;
+  corners_ = {a, b, c};
+  // Project along the axis where T is widest: its projection is then not
+  // degenerate, and the lines through its edges are the vertical planes
+  // through them.
+  const Vec3d normal = (pb.approx - pa.approx).cross(pc.approx - pa.approx);
+  normal.cwiseAbs().maxCoeff(&axis_);
+  orientation_ = orient2d_projected(pa, pb, pc, axis_);
+  if (orientation_ == 0) {  // the double normal chose a degenerate projection: take any other
+    for (int k = 0; k < 3 && orientation_ == 0; ++k) {
+      axis_ = k;
+      orientation_ = orient2d_projected(pa, pb, pc, k);
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    ExactPoint3 lifted = mesh_.position(corners_[i]).to_exact();
+    (axis_ == 0 ? lifted.x : axis_ == 1 ? lifted.y : lifted.z) += 1;
+    line_lift_[i] = HybridPoint::from_exact(std::move(lifted));
+  }
+  plane_sign_.clear();
+  line_side_.clear();
+  candidates_.clear();
+  cut_tets_.clear();
+  cavity_.clear();
+  splits_.clear();
+  plane_points_.clear();
+  split_mesh_edges_.clear();
+  new_vertices_.clear();
+  section_pieces_.clear();
+  split_faces_.clear();
+  ids_storage_.clear();
+  return true;
+}
+
+int TriangleInserter::plane_sign(Index v) {
+  if (new_vertices_.count(v) != 0) return 0;  // cut points lie on P exactly
+  const auto [it, inserted] = plane_sign_.try_emplace(v, 0);
+  if (inserted) {
+    it->second = orient3d(mesh_.position(corners_[0]), mesh_.position(corners_[1]),
+                          mesh_.position(corners_[2]), mesh_.position(v));
+  }
+  return it->second;
+}
+
+int TriangleInserter::line_side(int line, Index v) {
+  const auto [it, inserted] = line_side_.try_emplace(v, std::array<std::int8_t, 3>{2, 2, 2});
+  std::int8_t& side = it->second[line];
+  if (side == 2) {
+    const Index p = corners_[line];
+    const Index q = corners_[(line + 1) % 3];
+    side = static_cast<std::int8_t>(
+        orientation_ * orient2d_projected(mesh_.position(p), mesh_.position(q), mesh_.position(v), axis_));
+  }
+  return side;
+}
+
+// ---------------------------------------------------------- candidate tets
+
+// Conservative: false only when the tet cannot meet T (strictly on one side
+// of P, or strictly outside one of the lines through T's edges).
+bool TriangleInserter::may_meet_triangle(Index t) {
+  const Tet& c = mesh_.tet(t);
+  int above = 0;
+  int below = 0;
+  for (Index v : c) {
+    const int s = plane_sign(v);
+    above += s > 0;
+    below += s < 0;
+  }
+  if (above == 4 || below == 4) return false;
+  for (int line = 0; line < 3; ++line) {
+    int outside = 0;
+    for (Index v : c) outside += line_side(line, v) < 0;
+    if (outside == 4) return false;
+  }
+  return true;
+}
+
+void TriangleInserter::collect_candidates() {
+  Index start = seed_tet_[corners_[0]];
+  if (start == kNoTet || !mesh_.tet_alive(start) || mesh_.corner_of(start, corners_[0]) < 0) {
+    throw RunError("triangle insertion: lost the tets around an input vertex (internal error)");
+  }
+  std::vector<Index> queue{start};
+  stamp(candidate_stamp_, start);
+  for (std::size_t i = 0; i < queue.size(); ++i) {
+    const Index t = queue[i];
+    if (!may_meet_triangle(t)) continue;
+    candidates_.push_back(t);
+    for (int k = 0; k < 4; ++k) {
+      const Index n = mesh_.neighbour(t, k);
+      if (n == kNoTet || stamped(candidate_stamp_, n)) continue;
+      stamp(candidate_stamp_, n);
+      queue.push_back(n);
+    }
+  }
+  std::sort(candidates_.begin(), candidates_.end());
+  for (Index t : candidates_) {
+    if (is_cut(t)) {
+      cut_tets_.push_back(t);
+      stamp(cut_stamp_, t);
+    }
+  }
+}
+
+// P crosses t and the section overlaps T: only then must t be cut (a tet
+// whose interior meets T has a section overlapping T with positive area).
+bool TriangleInserter::is_cut(Index t) {
+  bool above = false;
+  bool below = false;
+  for (Index v : mesh_.tet(t)) {
+    const int s = plane_sign(v);
+    above |= s > 0;
+    below |= s < 0;
+  }
+  if (!above || !below) return false;
+  std::vector<HybridPoint> section;
+  const Tet& c = mesh_.tet(t);
+  for (int i = 0; i < 4; ++i) {
+    if (plane_sign(c[i]) == 0) section.push_back(mesh_.position(c[i]));
+  }
+  for (const auto& [i, j] : kTetEdges) {
+    if (plane_sign(c[i]) * plane_sign(c[j]) < 0) section.push_back(plane_point(c[i], c[j]));
+  }
+  return overlaps_triangle(section);
+}
+
+const HybridPoint& TriangleInserter::plane_point(Index u, Index v) {
+  const auto [it, inserted] = plane_points_.try_emplace(segment_key(u, v));
+  if (inserted) {
+    it->second = HybridPoint::from_exact(
+        intersect_segment_plane(mesh_.position(u), mesh_.position(v), mesh_.position(corners_[0]),
+                                mesh_.position(corners_[1]), mesh_.position(corners_[2])));
+  }
+  return it->second;
+}
+
+// Whether the convex polygon with corners `points` (on P, any order)
+// overlaps T's interior, by separating lines: T's edge lines, and the
+// polygon's own edges (a pair of corners with all other corners on one side).
+bool TriangleInserter::overlaps_triangle(std::span<const HybridPoint> points) {
+  const auto side = [&](const HybridPoint& p, const HybridPoint& q, const HybridPoint& x) {
+    return orient2d_projected(p, q, x, axis_);
+  };
+  for (int line = 0; line < 3; ++line) {
+    const HybridPoint& p = mesh_.position(corners_[line]);
+    const HybridPoint& q = mesh_.position(corners_[(line + 1) % 3]);
+    const bool all_outside = std::all_of(points.begin(), points.end(),
+                                         [&](const HybridPoint& x) { return orientation_ * side(p, q, x) <= 0; });
+    if (all_outside) return false;
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (std::size_t j = i + 1; j < points.size(); ++j) {
+      int polygon_side = 0;
+      bool is_edge = true;
+      for (std::size_t k = 0; k < points.size() && is_edge; ++k) {
+        if (k == i || k == j) continue;
+        const int s = side(points[i], points[j], points[k]);
+        if (s != 0 && polygon_side != 0 && s != polygon_side) is_edge = false;
+        if (s != 0) polygon_side = s;
+      }
+      if (!is_edge || polygon_side == 0) continue;
+      bool separated = true;
+      for (Index corner : corners_) {
+        if (side(points[i], points[j], mesh_.position(corner)) * polygon_side > 0) separated = false;
+      }
+      if (separated) return false;
+    }
+  }
+  return true;
+}
+
+// ------------------------------------------------------------------ cutting
+
+// The new point on segment (u, v) where P (line < 0) or the line through
+// T's edge `line` crosses it; created once, shared by every polygon that has
+// the segment. A segment between two old vertices is a mesh edge: every tet
+// around it must then be rebuilt.
+Index TriangleInserter::split_point(Index u, Index v, int line, Index seed_tet) {
+  const auto [it, inserted] = splits_.try_emplace(segment_key(u, v), kNoVertex);
+  if (!inserted) return it->second;
+  const HybridPoint& pu = mesh_.position(u);
+  const HybridPoint& pv = mesh_.position(v);
+  const Index w = mesh_.add_vertex(
+      line < 0 ? plane_point(u, v)
+               : HybridPoint::from_exact(intersect_segment_plane(pu, pv, mesh_.position(corners_[line]),
+                                                                 mesh_.position(corners_[(line + 1) % 3]),
+                                                                 line_lift_[line])));
+  note_new_vertex(w);
+  it->second = w;
+  if (new_vertices_.count(u) == 0 && new_vertices_.count(v) == 0) {
+    split_mesh_edges_.push_back({u, v, seed_tet});
+  }
+  new_vertices_.insert(w);
+  ++counters_.new_vertices;
+  return w;
+}
+
+void TriangleInserter::register_cut_points() {
+  for (Index t : cut_tets_) {
+    const Tet& c = mesh_.tet(t);
+    for (const auto& [i, j] : kTetEdges) {
+      if (plane_sign(c[i]) * plane_sign(c[j]) < 0) split_point(c[i], c[j], -1, t);
+    }
+  }
+}
+
+// The polygon P cuts out of cut tet t, oriented out of its positive half.
+std::vector<Index> TriangleInserter::section_polygon(Index t) {
+  std::vector<std::pair<Index, Index>> sides;
+  for (int k = 0; k < 4; ++k) {
+    const auto f = mesh_.face_vertices(t, k);
+    std::vector<Index> on_plane;
+    for (int i = 0; i < 3; ++i) {
+      const Index u = f[i];
+      const Index v = f[(i + 1) % 3];
+      if (plane_sign(u) == 0) on_plane.push_back(u);
+      if (plane_sign(u) * plane_sign(v) < 0) on_plane.push_back(splits_.at(segment_key(u, v)));
+    }
+    if (on_plane.size() == 2) {
+      sides.emplace_back(std::min(on_plane[0], on_plane[1]), std::max(on_plane[0], on_plane[1]));
+    }
+  }
+  // An edge lying on P is the side of two faces.
+  std::sort(sides.begin(), sides.end());
+  sides.erase(std::unique(sides.begin(), sides.end()), sides.end());
+  std::vector<Index> cycle{sides.front().first, sides.front().second};
+  sides.erase(sides.begin());
+  while (!sides.empty()) {
+    const auto next = std::find_if(sides.begin(), sides.end(), [&](const auto& s) {
+      return s.first == cycle.back() || s.second == cycle.back();
+    });
+    if (next == sides.end()) throw RunError("triangle insertion: open section polygon (internal error)");
+    const Index other = next->first == cycle.back() ? next->second : next->first;
+    sides.erase(next);
+    if (other != cycle.front()) cycle.push_back(other);
+  }
+  Index above = kNoVertex;
+  for (Index v : mesh_.tet(t)) {
+    if (plane_sign(v) > 0) above = v;
+  }
+  if (orient3d(mesh_.position(cycle[0]), mesh_.position(cycle[1]), mesh_.position(cycle[2]),
+               mesh_.position(above)) > 0) {
+    std::reverse(cycle.begin(), cycle.end());
+  }
+  return cycle;
+}
+
+// Splits a convex polygon by P (line < 0) or by a line through T's edge:
+// (the part on the non-negative side, the part on the non-positive side);
+// a part is empty when no corner is strictly on its side.
+std::pair<std::vector<Index>, std::vector<Index>> TriangleInserter::split_polygon(
+    const std::vector<Index>& polygon, int line, Index seed_tet) {
+  const auto side = [&](Index v) { return line < 0 ? plane_sign(v) : line_side(line, v); };
+  std::vector<int> sides(polygon.size());
+  bool any_positive = false;
+  bool any_negative = false;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    sides[i] = side(polygon[i]);
+    any_positive |= sides[i] > 0;
+    any_negative |= sides[i] < 0;
+  }
+  if (!any_negative) return {polygon, {}};
+  if (!any_positive) return {{}, polygon};
+  std::vector<Index> positive;
+  std::vector<Index> negative;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const std::size_t j = (i + 1) % polygon.size();
+    if (sides[i] >= 0) positive.push_back(polygon[i]);
+    if (sides[i] <= 0) negative.push_back(polygon[i]);
+    if (sides[i] * sides[j] < 0) {
+      const Index w = split_point(polygon[i], polygon[j], line, seed_tet);
+      positive.push_back(w);
+      negative.push_back(w);
+    }
+  }
+  return {positive, negative};
+}
+
+// The pieces of a polygon on P: those outside T keep `ids`, the one inside
+// (if any) gets T's id too.
+std::vector<TriangleInserter::Piece> TriangleInserter::clip_by_triangle(std::vector<Index> polygon,
+                                                                        const Ids& ids, Index seed_tet) {
+  std::vector<Piece> pieces;
+  for (int line = 0; line < 3; ++line) {
+    auto [inside, outside] = split_polygon(polygon, line, seed_tet);
+    if (!outside.empty()) pieces.push_back({std::move(outside), ids});
+    if (inside.empty()) return pieces;
+    polygon = std::move(inside);
+  }
+  pieces.push_back({std::move(polygon), with_id(ids, id_)});
+  return pieces;
+}
+
+void TriangleInserter::split_faces_of_cut_tets() {
+  for (Index t : cut_tets_) {
+    section_pieces_[t] = clip_by_triangle(section_polygon(t), {}, t);
+    for (int k = 0; k < 4; ++k) {
+      const auto f = mesh_.face_vertices(t, k);
+      const int s0 = plane_sign(f[0]), s1 = plane_sign(f[1]), s2 = plane_sign(f[2]);
+      const bool crossed = std::min({s0, s1, s2}) < 0 && std::max({s0, s1, s2}) > 0;
+      if (!crossed || split_faces_.count(sorted_corners(f)) != 0) continue;
+      const auto ids = mesh_.surface_ids(t, k);
+      const Ids face_ids(ids.begin(), ids.end());
+      auto [above, below] = split_polygon({f[0], f[1], f[2]}, -1, t);
+      split_faces_[sorted_corners(f)] = {f, {{std::move(above), face_ids}, {std::move(below), face_ids}}};
+    }
+  }
+}
+
+// Existing faces lying on P that T overlaps: split along T's edges. A face
+// that stays whole only gains T's id (both sides at once, no rebuild).
+void TriangleInserter::clip_faces_on_plane() {
+  for (Index t : candidates_) {
+    if (stamped(cut_stamp_, t)) continue;
+    for (int k = 0; k < 4; ++k) {
+      const auto f = mesh_.face_vertices(t, k);
+      if (plane_sign(f[0]) != 0 || plane_sign(f[1]) != 0 || plane_sign(f[2]) != 0) continue;
+      if (split_faces_.count(sorted_corners(f)) != 0) continue;
+      const std::array<HybridPoint, 3> face{mesh_.position(f[0]), mesh_.position(f[1]), mesh_.position(f[2])};
+      if (!overlaps_triangle(face)) continue;
+      const auto ids = mesh_.surface_ids(t, k);
+      std::vector<Piece> pieces = clip_by_triangle({f[0], f[1], f[2]}, Ids(ids.begin(), ids.end()), t);
+      if (pieces.size() == 1) {
+        if (pieces.front().ids.size() != ids.size()) mesh_.set_surface_ids(t, k, pieces.front().ids);
+        continue;
+      }
+      split_faces_[sorted_corners(f)] = {f, std::move(pieces)};
+    }
+  }
+}
+
+// The neighbour of t across the face containing edge (u, v) that does not
+// lead back to `previous` (the first such face when previous is kNoTet and
+// `first` is true, the second when it is false).
+Index TriangleInserter::next_around_edge(Index t, Index u, Index v, Index previous, bool first) const {
+  const Tet& c = mesh_.tet(t);
+  bool skipped = false;
+  for (int k = 0; k < 4; ++k) {
+    if (c[k] == u || c[k] == v) continue;
+    const Index n = mesh_.neighbour(t, k);
+    if (previous != kNoTet) {
+      if (n != previous) return n;
+    } else if (first || skipped) {
+      return n;
+    } else {
+      skipped = true;
+    }
+  }
+  return kNoTet;
+}
+
+void TriangleInserter::add_to_cavity(Index t) {
+  if (stamped(cavity_stamp_, t)) return;
+  stamp(cavity_stamp_, t);
+  cavity_.push_back(t);
+}
+
+// Every tet around edge (u, v): walk one way from `seed`, and the other way
+// too when the hull (the box) stopped the first walk.
+void TriangleInserter::walk_around_edge(Index u, Index v, Index seed) {
+  add_to_cavity(seed);
+  for (const bool first : {true, false}) {
+    Index previous = seed;
+    Index t = next_around_edge(seed, u, v, kNoTet, first);
+    while (t != kNoTet && t != seed) {
+      add_to_cavity(t);
+      const Index next = next_around_edge(t, u, v, previous, true);
+      previous = t;
+      t = next;
+    }
+    if (t == seed) return;
+  }
+}
+
+void TriangleInserter::collect_cavity() {
+  for (Index t : cut_tets_) add_to_cavity(t);
+  for (const auto& [u, v, seed] : split_mesh_edges_) walk_around_edge(u, v, seed);
+  std::sort(cavity_.begin(), cavity_.end());
+}
+
+// ------------------------------------------------------------ rebuilding
+
+void TriangleInserter::append_edge_interior(Index u, Index v, std::vector<Index>& out) const {
+  const auto it = splits_.find(segment_key(u, v));
+  if (it == splits_.end()) return;
+  append_edge_interior(u, it->second, out);
+  out.push_back(it->second);
+  append_edge_interior(it->second, v, out);
+}
+
+std::vector<Index> TriangleInserter::with_flat_points(const std::vector<Index>& polygon) const {
+  std::vector<Index> result;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    result.push_back(polygon[i]);
+    append_edge_interior(polygon[i], polygon[(i + 1) % polygon.size()], result);
+  }
+  return result;
+}
+
+// Face k of cavity tet t as polygons oriented out of t.
+std::vector<TriangleInserter::Piece> TriangleInserter::face_pieces(Index t, int face) {
+  const auto f = mesh_.face_vertices(t, face);
+  const auto split = split_faces_.find(sorted_corners(f));
+  if (split == split_faces_.end()) {
+    const auto ids = mesh_.surface_ids(t, face);
+    return {{{f[0], f[1], f[2]}, Ids(ids.begin(), ids.end())}};
+  }
+  std::vector<Piece> pieces = split->second.pieces;
+  if (!same_orientation(split->second.oriented, f)) {
+    for (Piece& piece : pieces) std::reverse(piece.corners.begin(), piece.corners.end());
+  }
+  return pieces;
+}
+
+void TriangleInserter::add_polygon(const std::vector<Index>& polygon, const Ids& ids,
+                                   std::vector<CellTriangle>& cell) {
+  std::vector<std::array<Index, 3>> triangles;
+  triangulate_convex_polygon(mesh_, with_flat_points(polygon), triangles);
+  const Ids* stored = nullptr;
+  if (!ids.empty()) stored = &ids_storage_.emplace_back(ids);
+  for (const auto& triangle : triangles) cell.push_back({triangle, stored});
+}
+
+void TriangleInserter::build_cell(std::vector<CellTriangle>& cell, std::vector<ConeTet>& tets) {
+  Index steiner = kNoVertex;
+  tetrahedralize_convex_cell(mesh_, cell, tets, steiner);
+  if (steiner != kNoVertex) {
+    note_new_vertex(steiner);
+    new_vertices_.insert(steiner);
+    ++counters_.steiner_points;
+  }
+  cell.clear();
+}
+
+void TriangleInserter::rebuild_cavity() {
+  std::vector<ConeTet> tets;
+  std::vector<CellTriangle> cell;
+  for (Index t : cavity_) {
+    const bool cut = stamped(cut_stamp_, t);
+    const std::vector<int> sides = cut ? std::vector<int>{1, -1} : std::vector<int>{0};
+    for (int sign : sides) {
+      for (int k = 0; k < 4; ++k) {
+        for (const Piece& piece : face_pieces(t, k)) {
+          if (piece.corners.size() < 3) continue;
+          if (sign != 0) {
+            int piece_side = 0;
+            for (Index v : piece.corners) piece_side = piece_side != 0 ? piece_side : plane_sign(v);
+            if (piece_side != sign) continue;
+          }
+          add_polygon(piece.corners, piece.ids, cell);
+        }
+      }
+      if (cut) {
+        for (const Piece& piece : section_pieces_.at(t)) {
+          std::vector<Index> polygon = piece.corners;
+          if (sign < 0) std::reverse(polygon.begin(), polygon.end());
+          add_polygon(polygon, piece.ids, cell);
+        }
+      }
+      build_cell(cell, tets);
+    }
+  }
+
+  std::vector<Index> outside;
+  for (Index t : cavity_) {
+    for (int k = 0; k < 4; ++k) {
+      const Index n = mesh_.neighbour(t, k);
+      if (n != kNoTet && !stamped(cavity_stamp_, n)) outside.push_back(n);
+    }
+  }
+  for (Index t : cavity_) mesh_.remove_tet(t);
+  std::vector<Index> created;
+  created.reserve(tets.size());
+  for (const ConeTet& tet : tets) {
+    const Index t = mesh_.add_tet(tet.corners);
+    for (int k = 0; k < 4; ++k) {
+      if (tet.face_ids[k] != nullptr) mesh_.set_surface_ids(t, k, *tet.face_ids[k]);
+    }
+    for (Index v : tet.corners) seed_tet_[v] = t;
+    created.push_back(t);
+  }
+  counters_.cut_tets += cut_tets_.size();
+  counters_.rebuilt_tets += cavity_.size();
+  counters_.new_tets += created.size();
+  created.insert(created.end(), outside.begin(), outside.end());
+  mesh_.connect(created);
+}
+
+// ----------------------------------------------------------------- driver
+
+bool TriangleInserter::insert(Index a, Index b, Index c, std::uint32_t id) {
+  if (!set_up_plane(a, b, c, id)) {
+    ++counters_.degenerate;
+    return false;
+  }
+  collect_candidates();
+  register_cut_points();
+  split_faces_of_cut_tets();
+  clip_faces_on_plane();
+  collect_cavity();
+  if (!cavity_.empty()) rebuild_cavity();
+  ++counters_.inserted;
+  return true;
+}
+
+}  // namespace mr::tetmesh::detail

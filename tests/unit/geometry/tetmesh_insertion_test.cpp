@@ -1,0 +1,136 @@
+// Stage 4: exact triangle insertion. After inserting a soup, the mesh must
+// satisfy every invariant (find_mesh_inconsistency: exact orientation,
+// conforming adjacency, two-sided marks) and each input triangle must be
+// exactly covered by the faces marked with its id: their areas add up to
+// the triangle's area (up to the rounding of cut points to doubles).
+
+#include "test_support.h"
+
+#include <mr/tetmesh/background_mesh.h>
+#include <mr/tetmesh/insertion.h>
+#include <mr/tetmesh/mesh_check.h>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+#include <random>
+
+using namespace mr;
+using namespace mr::tetmesh;
+
+namespace {
+
+double triangle_area(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  return 0.5 * (b - a).cross(c - a).norm();
+}
+
+// Area of the faces carrying each id, each face counted once.
+std::map<std::uint32_t, double> marked_area(const Mesh& mesh) {
+  std::map<std::uint32_t, double> area;
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    for (int k = 0; k < 4; ++k) {
+      const Index n = mesh.neighbour(t, k);
+      if (!mesh.is_surface_face(t, k) || (n != kNoTet && n < t)) continue;
+      const auto f = mesh.face_vertices(t, k);
+      const double a = triangle_area(mesh.position(f[0]).approx, mesh.position(f[1]).approx,
+                                     mesh.position(f[2]).approx);
+      for (std::uint32_t id : mesh.surface_ids(t, k)) area[id] += a;
+    }
+  }
+  return area;
+}
+
+struct Inserted {
+  BackgroundMesh background;
+  InsertionStats stats;
+};
+
+Inserted insert_soup(const TriangleSoup& soup) {
+  const DerivedParameters derived = derive_parameters({}, soup);
+  Inserted result{build_background_mesh(soup, spatial::AabbTree(soup), background_parameters(derived, 1)), {}};
+  result.stats = insert_triangles(result.background.mesh, soup, result.background.input_vertex);
+  return result;
+}
+
+void require_exactly_embedded(const TriangleSoup& soup, const Inserted& inserted) {
+  const Mesh& mesh = inserted.background.mesh;
+  REQUIRE(find_mesh_inconsistency(mesh) == "");
+  const std::map<std::uint32_t, double> area = marked_area(mesh);
+  for (std::size_t i = 0; i < soup.triangles.size(); ++i) {
+    const Triangle& f = soup.triangles[i];
+    const double expected = triangle_area(soup.positions[f[0]], soup.positions[f[1]], soup.positions[f[2]]);
+    const auto it = area.find(static_cast<std::uint32_t>(i));
+    const double got = it == area.end() ? 0.0 : it->second;
+    INFO("triangle " << i << " got " << got << " expected " << expected);
+    CHECK(std::abs(got - expected) <= 1e-9 * std::max(1.0, expected));
+  }
+}
+
+TriangleSoup random_soup(unsigned seed, int triangles) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> coordinate(0.0, 1.0);
+  TriangleSoup soup;
+  for (int i = 0; i < 3 * triangles; ++i) {
+    soup.positions.emplace_back(coordinate(random), coordinate(random), coordinate(random));
+  }
+  for (int i = 0; i < triangles; ++i) {
+    soup.triangles.push_back({Index(3 * i), Index(3 * i + 1), Index(3 * i + 2)});
+  }
+  return soup;
+}
+
+TriangleSoup merged(const TriangleSoup& a, const TriangleSoup& b) {
+  TriangleSoup soup = a;
+  const Index offset = static_cast<Index>(a.positions.size());
+  soup.positions.insert(soup.positions.end(), b.positions.begin(), b.positions.end());
+  for (Triangle f : b.triangles) soup.triangles.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+  return soup;
+}
+
+}  // namespace
+
+TEST_CASE("insertion: a cube's faces become mesh faces", "[tetmesh][insertion]") {
+  const TriangleSoup cube = test::cube_soup();
+  const Inserted inserted = insert_soup(cube);
+  CHECK(inserted.stats.inserted == 12);
+  require_exactly_embedded(cube, inserted);
+}
+
+TEST_CASE("insertion: two overlapping cubes cut each other", "[tetmesh][insertion]") {
+  const TriangleSoup soup = merged(test::cube_soup(0.0, 1.0), test::cube_soup(0.5, 1.5));
+  const Inserted inserted = insert_soup(soup);
+  CHECK(inserted.stats.new_vertices > 0);
+  require_exactly_embedded(soup, inserted);
+}
+
+TEST_CASE("insertion: coplanar overlapping and duplicated triangles", "[tetmesh][insertion]") {
+  TriangleSoup soup;
+  soup.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.2, 0.2, 0}, {1.3, 0.4, 0}, {0.1, 0.9, 0}, {0, 0, 1}};
+  soup.triangles = {{0, 1, 2}, {3, 4, 5}, {0, 1, 2}, {2, 1, 0}, {0, 1, 6}};
+  const Inserted inserted = insert_soup(soup);
+  require_exactly_embedded(soup, inserted);
+}
+
+TEST_CASE("insertion: degenerate triangles are skipped, the rest embedded", "[tetmesh][insertion]") {
+  TriangleSoup soup = test::cube_soup();
+  const Index base = static_cast<Index>(soup.positions.size());
+  soup.positions.push_back({0.25, 0.5, 0.75});  // three exactly collinear points
+  soup.positions.push_back({0.5, 1.0, 1.5});
+  soup.positions.push_back({0.75, 1.5, 2.25});
+  soup.triangles.push_back({base, base + 1, base + 2});
+  soup.triangles.push_back({base, base, base + 1});
+  const Inserted inserted = insert_soup(soup);
+  CHECK(inserted.stats.degenerate == 2);
+  CHECK(find_mesh_inconsistency(inserted.background.mesh) == "");
+}
+
+TEST_CASE("insertion: random intersecting soups are embedded exactly", "[tetmesh][insertion]") {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const TriangleSoup soup = random_soup(seed, 25);
+    INFO("seed " << seed);
+    const Inserted inserted = insert_soup(soup);
+    require_exactly_embedded(soup, inserted);
+  }
+}

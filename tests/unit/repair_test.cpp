@@ -1,0 +1,388 @@
+// The repair stage of meshrepair on hand-built tet sets (independent of the
+// tetrahedralization), verified with mr::check; and meshrepair end to end.
+
+#include "test_support.h"
+
+#include <mr/check/distance.h>
+#include <mr/check/surface_check.h>
+#include <mr/core/boundary.h>
+#include <mr/core/errors.h>
+#include <mr/io/default_registry.h>
+#include <mr/io/mesh_io.h>
+#include <mr/repair/repair.h>
+#include <mr/simplify/simplify.h>
+
+#include <meshrepair.h>
+
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <random>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+using namespace mr;
+
+namespace {
+
+using Cell = std::array<int, 3>;
+
+// Unit cells of the integer grid, each split into the 6 Kuhn tets along its
+// main diagonal (the same in every cell, so the tets conform), positively
+// oriented, corners shared between cells.
+TetMesh grid_tets(const std::vector<Cell>& cells) {
+  TetMesh mesh;
+  std::map<Cell, Index> index;
+  auto vertex = [&](int x, int y, int z) {
+    const auto [it, added] = index.emplace(Cell{x, y, z}, Index(mesh.positions.size()));
+    if (added) mesh.positions.emplace_back(x, y, z);
+    return it->second;
+  };
+  const TetMesh unit = test::cube_tets();
+  for (const Cell& c : cells)
+    for (const Tet& t : unit.tets) {
+      Tet tet;
+      for (int k = 0; k < 4; ++k) {
+        const Vec3d& p = unit.positions[t[k]];
+        tet[k] = vertex(c[0] + int(p.x()), c[1] + int(p.y()), c[2] + int(p.z()));
+      }
+      mesh.tets.push_back(tet);
+    }
+  return mesh;
+}
+
+// A block of n^3 cells scaled into the unit cube.
+TetMesh fine_cube_tets(int n) {
+  std::vector<Cell> cells;
+  for (int x = 0; x < n; ++x)
+    for (int y = 0; y < n; ++y)
+      for (int z = 0; z < n; ++z) cells.push_back({x, y, z});
+  TetMesh mesh = grid_tets(cells);
+  for (Vec3d& p : mesh.positions) p /= double(n);
+  return mesh;
+}
+
+double epsilon_of(const TriangleSoup& input) { return 1e-3 * bounding_box_diagonal(input); }
+
+repair::RepairResult repair_tets(const TetMesh& tets, const TriangleSoup& input, bool cleanup = true) {
+  repair::RepairOptions options;
+  options.epsilon = epsilon_of(input);
+  options.cleanup = cleanup;
+  return repair::repair_surface_from_tets(tets, input, options);
+}
+
+// Everything the issue asks of a repaired surface, measured independently.
+void require_watertight(const TriangleSoup& surface, const TriangleSoup& input, double expected_volume,
+                        double volume_tolerance) {
+  const check::SurfaceReport r = check::check_surface(surface);
+  CAPTURE(r.boundary_edges, r.nonmanifold_edges, r.nonmanifold_vertices, r.inconsistent_edges, r.degenerate_faces,
+          r.self_intersecting_pairs, r.volume);
+  REQUIRE(r.watertight());
+  // No two vertices share a position (check_surface welds identical positions).
+  REQUIRE(r.vertices == surface.positions.size());
+  REQUIRE(r.volume == Approx(expected_volume).margin(volume_tolerance));
+  const double epsilon = epsilon_of(input);
+  const check::DistanceReport out_to_in = check::one_sided_distance(surface, input);
+  const check::DistanceReport in_to_out = check::one_sided_distance(input, surface);
+  CAPTURE(out_to_in.max, in_to_out.max, epsilon);
+  REQUIRE(out_to_in.max <= epsilon);
+  REQUIRE(in_to_out.max <= epsilon);
+}
+
+TriangleSoup translated(TriangleSoup soup, const Vec3d& offset) {
+  for (Vec3d& p : soup.positions) p += offset;
+  return soup;
+}
+
+TriangleSoup two_cubes(const Vec3d& offset) {
+  TriangleSoup soup = test::cube_soup();
+  soup.append(translated(test::cube_soup(), offset));
+  return soup;
+}
+
+}  // namespace
+
+TEST_CASE("a single cube of tets gives its 12 faces back", "[repair]") {
+  const TriangleSoup input = test::cube_soup();
+  const repair::RepairResult result = repair_tets(test::cube_tets(), input);
+  REQUIRE(result.manifold.nonmanifold_edges_found == 0);
+  REQUIRE(result.manifold.nonmanifold_vertices_found == 0);
+  REQUIRE(result.manifold.vertex_copies == 0);
+  REQUIRE(result.surface.triangles.size() == 12);
+  require_watertight(result.surface, input, 1.0, 1e-12);
+  REQUIRE(result.stages.size() == 3);
+  REQUIRE(result.stages[0].name == "manifold");
+  REQUIRE(result.stages[2].name == "cleanup");
+}
+
+TEST_CASE("two cubes of tets sharing only an edge are pulled apart", "[repair]") {
+  const TetMesh tets = grid_tets({{0, 0, 0}, {1, 1, 0}});
+  const TriangleSoup input = two_cubes({1, 1, 0});
+  const check::SurfaceReport peeled = check::check_surface(extract_boundary(tets));
+  REQUIRE(peeled.nonmanifold_edges == 1);  // the fixture really is broken
+  for (bool cleanup : {false, true}) {
+    const repair::RepairResult result = repair_tets(tets, input, cleanup);
+    REQUIRE(result.manifold.nonmanifold_edges_found == 1);
+    REQUIRE(result.manifold.vertex_copies == 2);  // both ends of the edge
+    REQUIRE(result.manifold.removed_tets == 0);
+    require_watertight(result.surface, input, 2.0, 1e-3);
+    REQUIRE(check::check_surface(result.surface).components == 2);
+  }
+}
+
+TEST_CASE("two cubes of tets sharing only a vertex are pulled apart", "[repair]") {
+  const TetMesh tets = grid_tets({{0, 0, 0}, {1, 1, 1}});
+  const TriangleSoup input = two_cubes({1, 1, 1});
+  const repair::RepairResult result = repair_tets(tets, input);
+  REQUIRE(result.manifold.nonmanifold_vertices_found == 1);
+  REQUIRE(result.manifold.nonmanifold_edges_found == 0);
+  REQUIRE(result.manifold.vertex_copies == 1);
+  require_watertight(result.surface, input, 2.0, 1e-3);
+}
+
+TEST_CASE("a pinch whose tets are connected elsewhere is resolved", "[repair]") {
+  // Two lower cells touch along an edge and are joined by an upper layer:
+  // the top end of the edge has one connected star, so splitting alone
+  // cannot resolve the edge.
+  const TetMesh tets = grid_tets({{0, 0, 0}, {1, 1, 0}, {0, 0, 1}, {0, 1, 1}, {1, 1, 1}});
+  const TriangleSoup input = extract_boundary(tets);
+  const repair::RepairResult result = repair_tets(tets, input);
+  REQUIRE(result.manifold.nonmanifold_edges_found == 1);
+  const check::SurfaceReport r = check::check_surface(result.surface);
+  CAPTURE(r.boundary_edges, r.nonmanifold_edges, r.nonmanifold_vertices, r.self_intersecting_pairs);
+  REQUIRE(r.watertight());
+  REQUIRE(r.vertices == result.surface.positions.size());
+  REQUIRE(r.volume == Approx(5.0).margin(0.5));
+}
+
+TEST_CASE("random tet subsets of a block become watertight surfaces", "[repair]") {
+  const TetMesh block = fine_cube_tets(3);
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    CAPTURE(seed);
+    std::mt19937 random(seed);
+    TetMesh kept;
+    kept.positions = block.positions;
+    for (const Tet& t : block.tets)
+      if (random() % 2) kept.tets.push_back(t);
+    const TriangleSoup input = extract_boundary(kept);
+    const repair::RepairResult result = repair_tets(kept, input);
+    REQUIRE(result.manifold.nonmanifold_edges_found + result.manifold.nonmanifold_vertices_found > 0);
+    const check::SurfaceReport r = check::check_surface(result.surface);
+    CAPTURE(r.boundary_edges, r.nonmanifold_edges, r.nonmanifold_vertices, r.inconsistent_edges,
+            r.degenerate_faces, r.self_intersecting_pairs, result.manifold.removed_tets, result.manifold.vertex_copies);
+    REQUIRE(r.watertight());
+    REQUIRE(r.vertices == result.surface.positions.size());
+    REQUIRE(r.volume <= test::tet_volume(kept) + 1e-9);
+  }
+}
+
+TEST_CASE("the clean-up makes a dense peeled surface coarse inside the envelope", "[repair]") {
+  const TetMesh tets = fine_cube_tets(4);
+  const TriangleSoup input = test::cube_soup();
+  const repair::RepairResult dense = repair_tets(tets, input, false);
+  const repair::RepairResult clean = repair_tets(tets, input, true);
+  REQUIRE(dense.surface.triangles.size() == 6 * 16 * 2);
+  REQUIRE(clean.peeled_faces == dense.surface.triangles.size());
+  REQUIRE(clean.collapses > 0);
+  REQUIRE(clean.surface.triangles.size() <= dense.surface.triangles.size() / 4);
+  require_watertight(clean.surface, input, 1.0, 1e-9);
+}
+
+TEST_CASE("the repair refuses bad options and empty tet sets", "[repair]") {
+  const TriangleSoup input = test::cube_soup();
+  repair::RepairOptions options;
+  REQUIRE_THROWS_AS(repair::repair_surface_from_tets(test::cube_tets(), input, options), UsageError);
+  options.epsilon = 1e-3;
+  REQUIRE_THROWS_AS(repair::repair_surface_from_tets(TetMesh{}, input, options), RunError);
+  TetMesh broken = test::cube_tets();
+  broken.tets[0][0] = 99;
+  REQUIRE_THROWS_AS(repair::repair_surface_from_tets(broken, input, options), UsageError);
+}
+
+namespace {
+
+// Points of a sphere of radius r: an octahedron subdivided n times.
+TriangleSoup sphere(double radius, int subdivisions) {
+  TriangleSoup soup;
+  soup.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  soup.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int s = 0; s < subdivisions; ++s) {
+    std::map<std::pair<Index, Index>, Index> middle;
+    auto mid = [&](Index a, Index b) {
+      const auto key = std::minmax(a, b);
+      const auto [it, added] = middle.emplace(key, Index(soup.positions.size()));
+      if (added) soup.positions.push_back((soup.positions[a] + soup.positions[b]).normalized());
+      return it->second;
+    };
+    std::vector<Triangle> finer;
+    for (const Triangle& t : soup.triangles) {
+      const Index ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+      finer.insert(finer.end(), {{t[0], ab, ca}, {ab, t[1], bc}, {ca, bc, t[2]}, {ab, bc, ca}});
+    }
+    soup.triangles = std::move(finer);
+  }
+  for (Vec3d& p : soup.positions) p *= radius;
+  return soup;
+}
+
+}  // namespace
+
+TEST_CASE("simplify_in_envelope_of keeps the surface in the reference's envelope", "[repair][simplify]") {
+  const TriangleSoup surface = sphere(1.0, 5);
+  simplify::SimplifyOptions options;
+  options.epsilon_abs = 4e-3;
+  const simplify::SimplifyResult own = simplify::simplify_in_envelope(surface, options);
+  const simplify::SimplifyResult same = simplify::simplify_in_envelope_of(surface, surface, options);
+  REQUIRE(same.soup.triangles == own.soup.triangles);
+  // Every vertex of `surface` is 0.6 epsilon inside the reference: chords cut
+  // inward, so most collapses the own envelope allows leave this one.
+  const TriangleSoup reference = sphere(1.0 + 0.6 * options.epsilon_abs, 6);
+  const simplify::SimplifyResult held = simplify::simplify_in_envelope_of(surface, reference, options);
+  CAPTURE(own.faces_after, held.faces_after);
+  REQUIRE(own.faces_after < surface.triangles.size() / 2);
+  REQUIRE(held.faces_after > 2 * own.faces_after);
+  REQUIRE(check::one_sided_distance(held.soup, reference).max <= options.epsilon_abs);
+}
+
+// ---- meshrepair end to end (needs the exact insertion of libs/tetmesh) ----
+
+namespace {
+
+test::ToolRun run_meshrepair(const std::vector<std::string>& args) {
+  std::ostringstream out, err;
+  test::ToolRun run;
+  run.exit_code = tools::meshrepair(args, out, err);
+  run.out = out.str();
+  run.err = err.str();
+  return run;
+}
+
+std::vector<char> file_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Binary STL: 80-byte header, count, 50 bytes a face; every stored normal
+// agrees with the winding of its face, and the solid has positive volume.
+void require_binary_stl_with_outward_normals(const std::filesystem::path& path) {
+  const std::vector<char> bytes = file_bytes(path);
+  REQUIRE(bytes.size() >= 84);
+  std::uint32_t count = 0;
+  std::memcpy(&count, bytes.data() + 80, 4);
+  REQUIRE(bytes.size() == 84 + 50 * std::size_t(count));
+  double six_volume = 0;
+  for (std::uint32_t f = 0; f < count; ++f) {
+    float v[12];
+    std::memcpy(v, bytes.data() + 84 + 50 * std::size_t(f), sizeof v);
+    const Vec3d n(v[0], v[1], v[2]), a(v[3], v[4], v[5]), b(v[6], v[7], v[8]), c(v[9], v[10], v[11]);
+    REQUIRE(n.dot((b - a).cross(c - a)) > 0);
+    six_volume += a.dot(b.cross(c));
+  }
+  REQUIRE(six_volume > 0);
+}
+
+struct Case {
+  std::string name;
+  TriangleSoup input;
+  double volume;
+  /// Output within epsilon of the input: not where a hole was filled
+  /// (DESIGN: hole fills excepted).
+  bool output_near_input = true;
+  /// Input within epsilon of the output: not when input faces lie inside
+  /// the solid (overlapping parts), since they are not on its boundary.
+  bool input_near_output = true;
+};
+
+std::vector<Case> broken_cases() {
+  TriangleSoup missing_face = test::cube_soup();
+  missing_face.triangles.pop_back();
+  TriangleSoup overlapping = test::cube_soup();
+  overlapping.append(translated(test::cube_soup(), {0.5, 0.5, 0.5}));
+  TriangleSoup inverted = test::cube_soup();
+  for (Triangle& t : inverted.triangles) std::swap(t[1], t[2]);
+  return {{"cube", test::cube_soup(), 1.0},
+          {"cube_missing_face", missing_face, 1.0, false, true},
+          {"overlapping_cubes", overlapping, 2.0 - 0.125, true, false},
+          {"inverted_cube", inverted, 1.0}};
+}
+
+}  // namespace
+
+TEST_CASE("meshrepair makes broken inputs watertight", "[repair][e2e]") {
+  const io::Registry registry = io::make_default_registry();
+  test::TempDir dir("meshrepair");
+  for (const Case& c : broken_cases()) {
+    SECTION(c.name) {
+      const auto input = dir / (c.name + ".obj");
+      io::write_surface(registry, c.input, input);
+      const auto stl = dir / (c.name + "_out.stl"), stats = dir / (c.name + ".json");
+      const test::ToolRun run = run_meshrepair({input.string(), stl.string(), "--stats", stats.string(), "-q"});
+      CAPTURE(run.err);
+      REQUIRE(run.exit_code == 0);
+      REQUIRE(run.out.empty());
+      require_binary_stl_with_outward_normals(stl);
+      const TriangleSoup output = io::read_surface(registry, stl);
+      const check::SurfaceReport r = check::check_surface(output);
+      CAPTURE(r.boundary_edges, r.nonmanifold_edges, r.self_intersecting_pairs, r.volume);
+      REQUIRE(r.watertight());
+      REQUIRE(r.volume == Approx(c.volume).epsilon(0.01));
+
+      std::ifstream stats_file(stats);
+      const nlohmann::json j = nlohmann::json::parse(stats_file);
+      REQUIRE(j["output"]["watertight"] == true);
+      REQUIRE(j["output"]["genus"] == 0);
+      const double epsilon = j["epsilon_abs"].get<double>();
+      if (c.input_near_output) REQUIRE(j["output"]["hausdorff_input_to_output"].get<double>() <= epsilon * 1.01);
+      if (c.output_near_input) REQUIRE(j["output"]["hausdorff_output_to_input"].get<double>() <= epsilon * 1.01);
+      REQUIRE(j["input"].contains("self_intersecting_pairs"));
+      REQUIRE(j["stages"].size() >= 4);
+    }
+  }
+}
+
+TEST_CASE("meshrepair GLB output passes the Khronos validator", "[repair][e2e]") {
+  const std::filesystem::path tools_dir = MR_TEST_TOOLS_DIR;
+  if (std::system("node --version > /dev/null 2>&1") != 0) FAIL("node is not on PATH");
+  REQUIRE(std::filesystem::exists(tools_dir / "node_modules" / "gltf-validator"));
+  const io::Registry registry = io::make_default_registry();
+  test::TempDir dir("meshrepair_glb");
+  const auto input = dir / "overlapping.obj", glb = dir / "out.glb";
+  TriangleSoup overlapping = test::cube_soup();
+  overlapping.append(translated(test::cube_soup(), {0.5, 0.5, 0.5}));
+  io::write_surface(registry, overlapping, input);
+  const test::ToolRun run = run_meshrepair({input.string(), glb.string(), "-q"});
+  CAPTURE(run.err);
+  REQUIRE(run.exit_code == 0);
+  std::string command = "node '";
+  command += (tools_dir / "validate_gltf.mjs").string();
+  command += "' '";
+  command += glb.string();
+  command += "' > '";
+  command += (dir / "report.txt").string();
+  command += "' 2>&1";
+  const int status = std::system(command.c_str());
+  std::ifstream report_file(dir / "report.txt");
+  const std::string report{std::istreambuf_iterator<char>(report_file), std::istreambuf_iterator<char>()};
+  CAPTURE(report);
+  REQUIRE(status == 0);
+  REQUIRE(check::check_surface(io::read_surface(registry, glb)).watertight());
+}
+
+TEST_CASE("meshrepair reports bad input and usage with exit code 2", "[repair]") {
+  test::TempDir dir("meshrepair_bad");
+  const auto missing = dir / "missing.stl";
+  test::ToolRun run = run_meshrepair({missing.string(), (dir / "out.stl").string()});
+  REQUIRE(run.exit_code == 2);
+  REQUIRE(run.err.find(missing.string()) != std::string::npos);
+  REQUIRE(dir.files().empty());
+  run = run_meshrepair({"only_one_argument.stl"});
+  REQUIRE(run.exit_code == 2);
+  run = run_meshrepair({"a.stl", "b.stl", "-e", "not-a-number"});
+  REQUIRE(run.exit_code == 2);
+  run = run_meshrepair({"--help"});
+  REQUIRE(run.exit_code == 0);
+  REQUIRE(run.out.find("--stats") != std::string::npos);
+}

@@ -1,0 +1,99 @@
+#include "repair_stats.h"
+
+#include <mr/check/distance.h>
+#include <mr/check/surface_check.h>
+#include <mr/core/errors.h>
+
+#include <chrono>
+#include <fstream>
+
+namespace mr::tools {
+namespace {
+
+nlohmann::json input_defects(const TriangleSoup& input) {
+  const check::SurfaceReport r = check::check_surface(input);
+  return {{"faces", r.faces},
+          {"vertices", r.vertices},
+          {"boundary_edges", r.boundary_edges},
+          {"nonmanifold_edges", r.nonmanifold_edges},
+          {"nonmanifold_vertices", r.nonmanifold_vertices},
+          {"inconsistent_edges", r.inconsistent_edges},
+          {"degenerate_faces", r.degenerate_faces},
+          {"duplicate_faces", r.duplicate_faces},
+          {"self_intersecting_pairs", r.self_intersecting_pairs},
+          {"components", r.components}};
+}
+
+// Genus of a closed surface: components - Euler characteristic / 2.
+std::int64_t genus(const check::SurfaceReport& r) {
+  const auto v = static_cast<std::int64_t>(r.vertices), f = static_cast<std::int64_t>(r.faces);
+  const std::int64_t edges = 3 * f / 2;
+  return static_cast<std::int64_t>(r.components) - (v - edges + f) / 2;
+}
+
+nlohmann::json output_figures(const RepairRun& run) {
+  const TriangleSoup& surface = run.repair.surface;
+  const check::SurfaceReport r = check::check_surface(surface);
+  const check::DistanceReport to_input = check::one_sided_distance(surface, run.input);
+  const check::DistanceReport from_input = check::one_sided_distance(run.input, surface);
+  return {{"faces", r.faces},
+          {"vertices", r.vertices},
+          {"components", r.components},
+          {"genus", r.closed() && r.manifold() ? nlohmann::json(genus(r)) : nlohmann::json(nullptr)},
+          {"volume", r.volume},
+          {"watertight", r.watertight()},
+          {"boundary_edges", r.boundary_edges},
+          {"nonmanifold_edges", r.nonmanifold_edges},
+          {"nonmanifold_vertices", r.nonmanifold_vertices},
+          {"self_intersecting_pairs", r.self_intersecting_pairs},
+          {"degenerate_faces", r.degenerate_faces},
+          {"hausdorff_output_to_input", to_input.max},
+          {"hausdorff_input_to_output", from_input.max},
+          {"mean_distance_output_to_input", to_input.mean},
+          {"mean_distance_input_to_output", from_input.mean}};
+}
+
+nlohmann::json repair_figures(const repair::RepairResult& r) {
+  return {{"nonmanifold_edges_found", r.manifold.nonmanifold_edges_found},
+          {"nonmanifold_vertices_found", r.manifold.nonmanifold_vertices_found},
+          {"vertex_copies", r.manifold.vertex_copies},
+          {"removed_tets", r.manifold.removed_tets},
+          {"removal_faces_outside_envelope", r.manifold.faces_outside_envelope},
+          {"manifold_rounds", r.manifold.rounds},
+          {"peeled_faces", r.peeled_faces},
+          {"collapses", r.collapses},
+          {"flips", r.flips}};
+}
+
+nlohmann::json stage_seconds(const RepairRun& run) {
+  nlohmann::json stages = nlohmann::json::array();
+  stages.push_back({{"name", "read"}, {"seconds", run.seconds_read}});
+  for (const tetmesh::StageStats& s : run.pipeline.stats.stages)
+    stages.push_back({{"name", s.name}, {"seconds", s.seconds}});
+  for (const repair::StageTime& s : run.repair.stages) stages.push_back({{"name", s.name}, {"seconds", s.seconds}});
+  stages.push_back({{"name", "write"}, {"seconds", run.seconds_write}});
+  return stages;
+}
+
+}  // namespace
+
+nlohmann::json make_repair_stats(const RepairRun& run) {
+  const auto start = std::chrono::steady_clock::now();
+  nlohmann::json stats = {{"input", input_defects(run.input)},
+                          {"epsilon_abs", run.pipeline.parameters.epsilon},
+                          {"bbox_diagonal", run.pipeline.parameters.diagonal},
+                          {"kept_tets", run.pipeline.mesh.tets.size()},
+                          {"repair", repair_figures(run.repair)},
+                          {"output", output_figures(run)},
+                          {"stages", stage_seconds(run)}};
+  stats["seconds_measuring"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+void write_stats_file(const std::string& path, const nlohmann::json& stats) {
+  std::ofstream file(path);
+  file << stats.dump(2) << "\n";
+  if (!file) throw RunError(path + ": cannot write the statistics file");
+}
+
+}  // namespace mr::tools

@@ -1,0 +1,26 @@
+#pragma once
+// The --stats JSON of meshrepair: defects of the input, figures of the
+// output (measured independently with mr::check), and time per stage.
+
+#include <mr/core/triangle_soup.h>
+#include <mr/repair/repair.h>
+#include <mr/tetmesh/tetrahedralize.h>
+
+#include <nlohmann/json.hpp>
+
+namespace mr::tools {
+
+struct RepairRun {
+  const TriangleSoup& input;
+  const tetmesh::PipelineResult& pipeline;
+  const repair::RepairResult& repair;
+  double seconds_read = 0.0;
+  double seconds_write = 0.0;
+};
+
+nlohmann::json make_repair_stats(const RepairRun& run);
+
+/// Writes `stats` to `path`; mr::RunError when it cannot.
+void write_stats_file(const std::string& path, const nlohmann::json& stats);
+
+}  // namespace mr::tools

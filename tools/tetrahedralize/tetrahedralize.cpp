@@ -1,0 +1,150 @@
+#include "tetrahedralize.h"
+
+#include <mr/check/distance.h>
+#include <mr/check/tet_check.h>
+#include <mr/cli/run_tool.h>
+#include <mr/core/errors.h>
+#include <mr/io/default_registry.h>
+#include <mr/io/mesh_io.h>
+#include <mr/tetmesh/tetrahedralize.h>
+
+#include <nlohmann/json.hpp>
+
+#include <sys/resource.h>
+
+#include <fstream>
+#include <ostream>
+
+namespace mr::tools {
+namespace {
+
+struct ToolOptions {
+  tetmesh::PipelineOptions pipeline;
+  io::WriteOptions write;
+  std::string stats_path;
+  std::string surface_path;
+  bool quiet = false;
+};
+
+cli::ToolSpec make_spec(ToolOptions& o) {
+  using cli::parse_double;
+  using cli::parse_int;
+  cli::ToolSpec spec;
+  spec.name = "tetrahedralize";
+  spec.summary = "Turn any triangle soup into a valid tetrahedral mesh of the solid it describes.";
+  spec.positionals = {"IN", "OUT"};
+  spec.description =
+      "Simplify the input inside its epsilon-envelope, build a background Delaunay mesh, insert\n"
+      "every input triangle exactly (it becomes a union of mesh faces), round cut points to\n"
+      "doubles where no tet inverts, and keep the tets whose centroid has winding number |w| > 1/2.\n"
+      "OUT: .msh (MSH 4.1 by default), .mesh (Medit) or .vtu. Every written tet is positively\n"
+      "oriented on the written coordinates (exact check). Output is the same for any -j.";
+  auto& t = o.pipeline.tetrahedralize;
+  spec.options = {
+      {"--epsilon", "-e", "EPS", "envelope radius relative to the bbox diagonal (default 1e-3)",
+       [&](const std::string& v) { t.epsilon_rel = parse_double("--epsilon", v); }},
+      {"--epsilon-abs", "", "EPS", "absolute envelope radius (overrides --epsilon)",
+       [&](const std::string& v) { t.epsilon_abs = parse_double("--epsilon-abs", v); }},
+      {"--edge-length", "-l", "LEN", "target edge length relative to the bbox diagonal (default 0.05)",
+       [&](const std::string& v) { t.edge_length_rel = parse_double("--edge-length", v); }},
+      {"--edge-length-abs", "", "LEN", "absolute target edge length (overrides --edge-length)",
+       [&](const std::string& v) { t.edge_length_abs = parse_double("--edge-length-abs", v); }},
+      {"--positive-winding", "", "", "keep only tets with winding number > 1/2 (default |w| > 1/2)",
+       [&](const std::string&) { t.winding_rule = tetmesh::WindingRule::positive; }},
+      {"--no-filter", "", "", "keep every tet, labelled by region (tets connected without crossing the input)",
+       [&](const std::string&) { o.pipeline.filter = false; }},
+      {"--skip-simplify", "", "", "insert the input as it is, without simplifying it first",
+       [&](const std::string&) { t.skip_simplify = true; }},
+      {"--surface", "", "FILE", "also write the tracked surface (the input as embedded)",
+       [&](const std::string& v) { o.surface_path = v; }},
+      {"--msh-version", "", "V", "MSH version to write: 4.1 (default) or 2.2",
+       [&](const std::string& v) {
+         if (v != "4.1" && v != "2.2") throw UsageError("--msh-version must be 4.1 or 2.2, got " + v);
+         o.write.msh_version = v;
+       }},
+      {"--ascii", "", "", "write ASCII where the format has both encodings",
+       [&](const std::string&) { o.write.binary = false; }},
+      {"--stats", "", "FILE", "write counts, time per stage, peak memory, quality and distance as JSON",
+       [&](const std::string& v) { o.stats_path = v; }},
+      {"--threads", "-j", "N", "worker threads (default: all)",
+       [&](const std::string& v) { t.threads = parse_int("--threads", v, 1, 1024); }},
+      {"--quiet", "-q", "", "print nothing on success", [&](const std::string&) { o.quiet = true; }},
+  };
+  return spec;
+}
+
+double peak_memory_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
+}
+
+nlohmann::json make_stats(const TriangleSoup& input, const tetmesh::PipelineResult& result,
+                          const check::TetReport& quality) {
+  const check::DistanceReport distance = check::one_sided_distance(result.tracked_surface, input);
+  nlohmann::json stats = nlohmann::json::parse(tetmesh::to_json(result.stats));
+  stats["input"] = {{"vertices", input.positions.size()}, {"faces", input.triangles.size()}};
+  stats["output"] = {{"vertices", result.mesh.positions.size()},
+                     {"tets", result.mesh.tets.size()},
+                     {"tracked_surface_faces", result.tracked_surface.triangles.size()},
+                     {"volume", quality.volume}};
+  stats["quality"] = {{"min_dihedral_deg", quality.min_dihedral_deg},
+                      {"avg_min_dihedral_deg", quality.avg_min_dihedral_deg},
+                      {"max_amips", quality.max_amips},
+                      {"avg_amips", quality.avg_amips},
+                      {"inverted_tets", quality.inverted_tets},
+                      {"degenerate_tets", quality.degenerate_tets}};
+  stats["envelope"] = {{"epsilon", result.parameters.epsilon},
+                       {"bbox_diagonal", result.parameters.diagonal},
+                       {"tracked_surface_to_input_max", distance.max},
+                       {"tracked_surface_to_input_mean", distance.mean},
+                       {"samples", distance.samples}};
+  stats["peak_memory_mb"] = peak_memory_mb();
+  return stats;
+}
+
+void write_stats(const std::string& path, const nlohmann::json& stats) {
+  std::ofstream file(path);
+  file << stats.dump(2) << "\n";
+  if (!file) throw RunError(path + ": cannot write the statistics file");
+}
+
+}  // namespace
+
+int tetrahedralize(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  ToolOptions options;
+  const cli::ToolSpec spec = make_spec(options);
+  return cli::run_tool(spec, args, out, err, [&](const std::vector<std::string>& files) {
+    const io::Registry registry = io::make_default_registry();
+    if (!io::is_volume_format(registry, files[1])) {
+      throw UsageError(files[1] + ": the output must be a volume format (.msh, .mesh or .vtu)");
+    }
+    const TriangleSoup input = io::read_surface(registry, files[0]);
+    tetmesh::Logger logger;
+    if (!options.quiet) {
+      logger.on_message = [&](tetmesh::LogLevel level, std::string_view text) {
+        if (level != tetmesh::LogLevel::debug) err << text << "\n";
+      };
+    }
+    const tetmesh::PipelineResult result = tetmesh::tetrahedralize(input, options.pipeline, logger);
+    const check::TetReport quality = check::check_tets(result.mesh, {.self_intersections = false});
+    if (quality.tets == 0) {
+      throw RunError(files[0] + ": no tet lies inside the input (winding number nowhere above 1/2 in magnitude); "
+                     "nothing written. --no-filter keeps every tet");
+    }
+    if (!quality.valid()) {
+      throw RunError("the mesh failed its final exact check (" + std::to_string(quality.inverted_tets) +
+                     " inverted, " + std::to_string(quality.degenerate_tets) + " flat tets); nothing written");
+    }
+    io::write_volume(registry, result.mesh, files[1], options.write);
+    if (!options.surface_path.empty()) io::write_surface(registry, result.tracked_surface, options.surface_path);
+    if (!options.stats_path.empty()) write_stats(options.stats_path, make_stats(input, result, quality));
+    if (!options.quiet) {
+      out << files[0] << ": " << result.mesh.tets.size() << " tets, " << result.mesh.positions.size()
+          << " vertices, min dihedral " << quality.min_dihedral_deg << " deg, max AMIPS "
+          << quality.max_amips << ", " << result.stats.total_seconds() << " s\n";
+    }
+  });
+}
+
+}  // namespace mr::tools
