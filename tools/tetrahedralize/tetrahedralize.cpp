@@ -49,6 +49,13 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        [&](const std::string& v) { t.edge_length_rel = parse_double("--edge-length", v); }},
       {"--edge-length-abs", "", "LEN", "absolute target edge length (overrides --edge-length)",
        [&](const std::string& v) { t.edge_length_abs = parse_double("--edge-length-abs", v); }},
+      {"--stop-energy", "", "E", "improve until the largest AMIPS energy is below E (default 10)",
+       [&](const std::string& v) { t.stop_energy = parse_double("--stop-energy", v); }},
+      {"--max-passes", "", "N", "at most N mesh-improvement passes (default 80; 0 skips improvement)",
+       [&](const std::string& v) {
+         t.max_passes = parse_int("--max-passes", v, 0, 100000);
+         o.pipeline.improve = t.max_passes > 0;
+       }},
       {"--positive-winding", "", "", "keep only tets with winding number > 1/2 (default |w| > 1/2)",
        [&](const std::string&) { t.winding_rule = tetmesh::WindingRule::positive; }},
       {"--no-filter", "", "", "keep every tet, labelled by region (tets connected without crossing the input)",

@@ -4,16 +4,19 @@
 #include "rounding_stage.h"
 
 #include <mr/core/errors.h>
+#include <mr/envelope/envelope.h>
 #include <mr/simplify/simplify.h>
 #include <mr/spatial/aabb_tree.h>
 #include <mr/tetmesh/background_mesh.h>
 #include <mr/tetmesh/convert.h>
+#include <mr/tetmesh/improve.h>
 #include <mr/tetmesh/insertion.h>
 #include <mr/tetmesh/winding_filter.h>
 
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
+#include <memory>
 #include <string>
 
 namespace mr::tetmesh {
@@ -98,6 +101,33 @@ Mesh embed(const TriangleSoup& surface, const DerivedParameters& derived, const 
   }
 }
 
+void improve(Mesh& mesh, const TriangleSoup& input, const DerivedParameters& derived,
+             const PipelineOptions& options, PipelineStats& stats, const Logger& logger) {
+  StageTimer timer(stats, "improve", logger);
+  envelope::EnvelopeOptions envelope_options;
+  envelope_options.epsilon = derived.epsilon;
+  const std::unique_ptr<envelope::Envelope> envelope = envelope::make_envelope(input, envelope_options);
+  ImproveOptions improve_options;
+  improve_options.target_edge_length = derived.edge_length;
+  improve_options.stop_energy = options.tetrahedralize.stop_energy;
+  improve_options.max_passes = options.tetrahedralize.max_passes;
+  improve_options.threads = options.tetrahedralize.threads;
+  const ImproveStats improved = improve_mesh(mesh, *envelope, improve_options, logger);
+  count(timer, "passes", static_cast<std::size_t>(improved.passes));
+  count(timer, "splits", improved.splits);
+  count(timer, "collapses", improved.collapses);
+  count(timer, "swaps", improved.swaps_32 + improved.swaps_23 + improved.swaps_44);
+  count(timer, "smoothing_moves", improved.smoothing_moves);
+  count(timer, "rational_vertices", improved.rational_vertices);
+  if (improved.rational_vertices != 0) {
+    const RoundingStats rounded = round_vertices(mesh, *envelope, logger);
+    if (rounded.remaining != 0) {
+      throw RunError(std::to_string(rounded.remaining) + " vertices could not be rounded to doubles after "
+                     "mesh improvement; the mesh is not written");
+    }
+  }
+}
+
 PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, const Logger& logger) {
   PipelineResult result;
   result.parameters = derive_parameters(options.tetrahedralize, input);
@@ -105,6 +135,7 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, co
   const TriangleSoup surface = simplified_input(input, options, derived, result.stats, logger);
 
   Mesh mesh = embed(surface, derived, options, result.stats, logger);
+  if (options.improve) improve(mesh, input, derived, options, result.stats, logger);
 
   std::vector<char> keep;
   {

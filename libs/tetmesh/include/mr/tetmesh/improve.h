@@ -32,9 +32,10 @@ struct ImproveOptions {
   /// Worker threads; 0 means all hardware threads. The output is the same
   /// for every value.
   int threads = 0;
-  /// Halve the local target length around tets whose energy stays above
-  /// stop_energy after a pass that did not help (the paper's adaptive
-  /// refinement), down to target / min_size_ratio... at most this many times.
+  /// After a pass that lowered the largest energy by less than 1%, the local
+  /// target length around tets still above stop_energy is halved (the
+  /// paper's adaptive refinement); at most this many times, so never below
+  /// target / 2^max_refinements.
   int max_refinements = 3;
 };
 

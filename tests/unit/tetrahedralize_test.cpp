@@ -1,0 +1,178 @@
+// The tetrahedralize pipeline and tool on small broken inputs built in code:
+// every result must pass the independent exact check (check_tets: every tet
+// positively oriented on the written doubles) and enclose the expected
+// volume, the tracked surface must stay within epsilon of the input, and
+// the output must be byte-identical from run to run and across thread counts.
+
+#include "test_support.h"
+
+#include "tetrahedralize.h"
+
+#include <mr/check/distance.h>
+#include <mr/check/tet_check.h>
+#include <mr/io/default_registry.h>
+#include <mr/io/mesh_io.h>
+#include <mr/tetmesh/tetrahedralize.h>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <sstream>
+
+using namespace mr;
+
+namespace {
+
+TriangleSoup translated(TriangleSoup soup, const Vec3d& offset) {
+  for (Vec3d& p : soup.positions) p += offset;
+  return soup;
+}
+
+TriangleSoup merged(TriangleSoup a, const TriangleSoup& b) {
+  a.append(b);
+  return a;
+}
+
+struct Case {
+  std::string name;
+  TriangleSoup soup;
+  double volume;
+  /// Allowed |volume - expected|: epsilon times the surface area for a
+  /// closed solid; a hole's fill follows the winding number, not a plane.
+  double tolerance;
+};
+
+std::vector<Case> broken_inputs() {
+  TriangleSoup missing_face = test::cube_soup();
+  missing_face.triangles.pop_back();
+  TriangleSoup duplicated = test::cube_soup();
+  duplicated.append(test::cube_soup());
+  TriangleSoup sliver = test::cube_soup();
+  const Index base = static_cast<Index>(sliver.positions.size());
+  sliver.positions.push_back({0.2, 0.5, 0.5});
+  sliver.positions.push_back({0.8, 0.5, 0.5});
+  sliver.positions.push_back({0.5, 0.5 + 1e-9, 0.5});  // a needle inside the cube
+  sliver.triangles.push_back({base, base + 1, base + 2});
+  const double area_eps = 6 * 1e-3 * std::sqrt(3.0) * 2;  // two unit cubes' area times epsilon
+  return {
+      {"cube", test::cube_soup(), 1.0, area_eps},
+      {"two overlapping cubes", merged(test::cube_soup(), translated(test::cube_soup(), {0.5, 0.5, 0.5})),
+       2.0 - 0.125, area_eps},
+      {"cube with a missing face", missing_face, 1.0, 0.1},
+      {"coplanar stack", merged(test::cube_soup(), translated(test::cube_soup(), {0.0, 0.0, 1.0})), 2.0, area_eps},
+      {"bowtie (cubes sharing an edge)", merged(test::cube_soup(), translated(test::cube_soup(), {1.0, 1.0, 0.0})),
+       2.0, area_eps},
+      {"duplicated faces", duplicated, 1.0, area_eps},
+      {"sliver triangle", sliver, 1.0, area_eps},
+  };
+}
+
+test::ToolRun run_tetrahedralize(const std::vector<std::string>& args) {
+  std::ostringstream out, err;
+  test::ToolRun run;
+  run.exit_code = tools::tetrahedralize(args, out, err);
+  run.out = out.str();
+  run.err = err.str();
+  return run;
+}
+
+std::string file_bytes(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+TEST_CASE("tetrahedralize: broken inputs give valid meshes of the expected volume", "[tetrahedralize]") {
+  for (const Case& c : broken_inputs()) {
+    SECTION(c.name) {
+      tetmesh::PipelineOptions options;
+      options.improve = false;  // the improvement stage has its own tests; one run below uses it
+      const tetmesh::PipelineResult result = tetmesh::tetrahedralize(c.soup, options);
+      const check::TetReport report = check::check_tets(result.mesh);
+      CHECK(report.valid());
+      CHECK(report.boundary.closed());
+      CHECK(std::abs(report.volume - c.volume) <= c.tolerance);
+      const check::DistanceReport distance = check::one_sided_distance(result.tracked_surface, c.soup);
+      CHECK(distance.max <= result.parameters.epsilon);
+    }
+  }
+}
+
+TEST_CASE("tetrahedralize: the full pipeline with improvement keeps the cube", "[tetrahedralize]") {
+  const TriangleSoup cube = test::cube_soup();
+  const tetmesh::PipelineResult result = tetmesh::tetrahedralize(cube, {});
+  const check::TetReport report = check::check_tets(result.mesh);
+  CHECK(report.valid());
+  CHECK(report.boundary.watertight());
+  CHECK(std::abs(report.volume - 1.0) <= 6 * result.parameters.epsilon);
+  CHECK(report.min_dihedral_deg > 1.0);
+  CHECK(check::one_sided_distance(result.tracked_surface, cube).max <= result.parameters.epsilon);
+}
+
+TEST_CASE("tetrahedralize: --no-filter labels the regions the input separates", "[tetrahedralize]") {
+  tetmesh::PipelineOptions options;
+  options.filter = false;
+  options.improve = false;
+  const tetmesh::PipelineResult result = tetmesh::tetrahedralize(test::cube_soup(), options);
+  REQUIRE(result.mesh.tet_labels.size() == result.mesh.tets.size());
+  std::map<std::int32_t, double> volume;
+  for (std::size_t t = 0; t < result.mesh.tets.size(); ++t) {
+    const auto& p = result.mesh.positions;
+    const Tet& c = result.mesh.tets[t];
+    volume[result.mesh.tet_labels[t]] += (p[c[1]] - p[c[0]]).cross(p[c[2]] - p[c[0]]).dot(p[c[3]] - p[c[0]]) / 6;
+  }
+  REQUIRE(volume.size() == 2);  // inside and outside the cube
+  const double first = volume.begin()->second;
+  const double second = std::next(volume.begin())->second;
+  CHECK(std::min(std::abs(first - 1.0), std::abs(second - 1.0)) <= 1e-9);
+}
+
+TEST_CASE("tetrahedralize tool: writes a valid mesh, stats and the tracked surface, deterministically",
+          "[tetrahedralize][tool]") {
+  test::TempDir dir("tetrahedralize");
+  const io::Registry registry = io::make_default_registry();
+  const auto input = dir.path() / "overlap.obj";
+  io::write_surface(registry, merged(test::cube_soup(), translated(test::cube_soup(), {0.5, 0.5, 0.5})), input);
+  const auto a = dir.path() / "a.msh", b = dir.path() / "b.msh", stats = dir.path() / "stats.json";
+  const auto surface = dir.path() / "surface.obj";
+  const test::ToolRun first = run_tetrahedralize(
+      {input.string(), a.string(), "-j", "1", "--max-passes", "4", "--stats", stats.string(), "--surface", surface.string(), "-q"});
+  CAPTURE(first.err);
+  REQUIRE(first.exit_code == 0);
+  const test::ToolRun second = run_tetrahedralize({input.string(), b.string(), "-j", "2", "--max-passes", "4", "-q"});
+  REQUIRE(second.exit_code == 0);
+  CHECK(file_bytes(a) == file_bytes(b));
+
+  const check::TetReport report = check::check_tets(io::read_volume(registry, a));
+  CHECK(report.valid());
+  CHECK(std::abs(report.volume - 1.875) <= 0.02);
+  CHECK(!io::read_surface(registry, surface).triangles.empty());
+  std::ifstream stats_file(stats);
+  const nlohmann::json j = nlohmann::json::parse(stats_file);
+  CHECK(j["output"]["tets"].get<std::size_t>() == report.tets);
+  CHECK(j["quality"]["inverted_tets"] == 0);
+  CHECK(j["envelope"]["tracked_surface_to_input_max"].get<double>() <= j["envelope"]["epsilon"].get<double>());
+  CHECK(j["peak_memory_mb"].get<double>() > 0);
+  CHECK(j["stages"].size() >= 5);
+}
+
+TEST_CASE("tetrahedralize tool: bad input and bad usage exit 2 without output", "[tetrahedralize][tool]") {
+  test::TempDir dir("tetrahedralize_bad");
+  const auto garbage = dir.path() / "garbage.stl";
+  test::write_text(garbage, "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0\n");
+  const auto out = dir.path() / "out.msh";
+  const test::ToolRun bad_file = run_tetrahedralize({garbage.string(), out.string()});
+  CHECK(bad_file.exit_code == 2);
+  CHECK(bad_file.err.find(garbage.string()) != std::string::npos);
+  CHECK(!std::filesystem::exists(out));
+
+  const auto cube = dir.path() / "cube.obj";
+  io::write_surface(io::make_default_registry(), test::cube_soup(), cube);
+  const auto surface_out = dir.path() / "out.stl";
+  const test::ToolRun not_volume = run_tetrahedralize({cube.string(), surface_out.string()});
+  CHECK(not_volume.exit_code == 2);
+  CHECK(!std::filesystem::exists(surface_out));
+  CHECK(run_tetrahedralize({cube.string(), out.string(), "-e", "-1"}).exit_code == 2);
+}
