@@ -99,7 +99,8 @@ def run_tool(ctx, model, tool, input_faces, reference):
         row.update(status="empty", note="exit 0 but no output file" if not output else "exit 0, output file empty")
         return _finish(row)
     row.update(output=os.path.relpath(output, ctx.out_dir), output_bytes=os.path.getsize(output))
-    status, why, fields = check.check_output(ctx, tool, output, reference, workdir, ctx.stop)
+    status, why, fields = check.check_output(ctx, tool, output, reference, workdir, ctx.stop,
+                                             input_closed=check.input_is_closed(model.tags))
     row.update(fields)
     row.update(status=status, note="; ".join(n for n in (why, note) if n))
     return _finish(row)

@@ -208,6 +208,11 @@ class Pieces(unittest.TestCase):
         self.assertEqual(check.verdict("tetrahedralize", "volume", dict(good, out_tets=0))[0], "empty")
         self.assertEqual(check.verdict("tetrahedralize", "volume", dict(good, inverted_tets=1))[0], "invalid")
         self.assertEqual(check.verdict("tetrahedralize", "volume", dict(good, within_envelope=False))[0], "invalid")
+        # an open input's holes are filled: leaving the envelope there is allowed
+        self.assertEqual(check.verdict("tetrahedralize", "volume", dict(good, within_envelope=False),
+                                       input_closed=False)[0], "ok")
+        self.assertFalse(check.input_is_closed(("open", "holes")))
+        self.assertTrue(check.input_is_closed(("clean-closed",)))
         self.assertEqual(check.verdict("meshrepair", "surface", {"out_faces": 8, "watertight": False})[0], "invalid")
 
     def test_paired_ratio(self):

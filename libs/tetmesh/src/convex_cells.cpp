@@ -10,32 +10,46 @@ namespace {
 // The cycle starting at its smallest vertex, going towards the smaller of
 // that vertex's two neighbours; `reversed` tells whether this flipped the
 // orientation of the input cycle.
-std::vector<Index> canonical_cycle(std::span<const Index> cycle, bool& reversed) {
+// A polygon vertex with the bit set of the polygon sides it lies on.
+struct PolygonVertex {
+  Index id;
+  std::uint32_t sides;
+};
+
+// The cycle starting at its smallest vertex, going towards the smaller of
+// that vertex's two neighbours; `reversed` tells whether this flipped the
+// orientation of the input cycle.
+std::vector<PolygonVertex> canonical_cycle(std::span<const Index> cycle, std::span<const std::uint32_t> sides,
+                                           bool& reversed) {
   const std::size_t n = cycle.size();
   const std::size_t start = static_cast<std::size_t>(std::min_element(cycle.begin(), cycle.end()) - cycle.begin());
   const Index next = cycle[(start + 1) % n];
   const Index previous = cycle[(start + n - 1) % n];
   reversed = previous < next;
-  std::vector<Index> result(n);
+  std::vector<PolygonVertex> result(n);
   for (std::size_t i = 0; i < n; ++i) {
-    result[i] = reversed ? cycle[(start + n - i) % n] : cycle[(start + i) % n];
+    const std::size_t at = reversed ? (start + n - i) % n : (start + i) % n;
+    result[i] = {cycle[at], sides.empty() ? 0u : sides[at]};
   }
   return result;
 }
 
-bool is_strict_corner(const Mesh& mesh, Index previous, Index corner, Index next) {
-  return !collinear(mesh.position(previous), mesh.position(corner), mesh.position(next));
+// Collinearity of three vertices of a convex polygon: sharing a side proves
+// it without arithmetic (these exact zeros are the costly evaluations).
+bool on_a_line(const Mesh& mesh, const PolygonVertex& a, const PolygonVertex& b, const PolygonVertex& c) {
+  if ((a.sides & b.sides & c.sides) != 0) return true;
+  return collinear(mesh.position(a.id), mesh.position(b.id), mesh.position(c.id));
 }
 
 // Whether cutting off the corner at `ear` leaves a polygon with area. It
 // does not when every other corner lies on the line of the ear's diagonal:
 // the polygon was a triangle whose opposite side holds flat points.
-bool leaves_area(const Mesh& mesh, const std::vector<Index>& polygon, std::size_t ear) {
+bool leaves_area(const Mesh& mesh, const std::vector<PolygonVertex>& polygon, std::size_t ear) {
   const std::size_t n = polygon.size();
-  const HybridPoint& a = mesh.position(polygon[(ear + n - 1) % n]);
-  const HybridPoint& b = mesh.position(polygon[(ear + 1) % n]);
+  const PolygonVertex& a = polygon[(ear + n - 1) % n];
+  const PolygonVertex& b = polygon[(ear + 1) % n];
   for (std::size_t k = 2; k + 1 < n; ++k) {
-    if (!collinear(a, b, mesh.position(polygon[(ear + k) % n]))) return true;
+    if (!on_a_line(mesh, a, b, polygon[(ear + k) % n])) return true;
   }
   return false;
 }
@@ -44,9 +58,18 @@ bool leaves_area(const Mesh& mesh, const std::vector<Index>& polygon, std::size_
 
 bool sees_all(const Mesh& mesh, const HybridPoint& apex, Index apex_id,
               std::span<const CellTriangle> boundary) {
+  std::uint64_t planes_through_apex = 0;  // planes 0..63 of triangles having the apex
+  for (const CellTriangle& triangle : boundary) {
+    const auto& c = triangle.corners;
+    const bool has_apex = c[0] == apex_id || c[1] == apex_id || c[2] == apex_id;
+    if (has_apex && triangle.plane >= 0 && triangle.plane < 64) planes_through_apex |= 1ull << triangle.plane;
+  }
   for (const CellTriangle& triangle : boundary) {
     const auto& c = triangle.corners;
     if (c[0] == apex_id || c[1] == apex_id || c[2] == apex_id) continue;
+    if (triangle.plane >= 0 && triangle.plane < 64 && ((planes_through_apex >> triangle.plane) & 1) != 0) {
+      return false;  // coplanar with the apex: a flat cone tet
+    }
     if (orient3d(apex, mesh.position(c[0]), mesh.position(c[1]), mesh.position(c[2])) <= 0) {
       return false;
     }
@@ -141,11 +164,12 @@ bool collinear(const HybridPoint& p, const HybridPoint& q, const HybridPoint& r)
 }
 
 void triangulate_convex_polygon(const Mesh& mesh, std::span<const Index> cycle,
+                                std::span<const std::uint32_t> sides,
                                 std::vector<std::array<Index, 3>>& out) {
   bool reversed = false;
-  std::vector<Index> polygon = canonical_cycle(cycle, reversed);
-  const auto emit = [&](Index a, Index b, Index c) {
-    out.push_back(reversed ? std::array<Index, 3>{a, c, b} : std::array<Index, 3>{a, b, c});
+  std::vector<PolygonVertex> polygon = canonical_cycle(cycle, sides, reversed);
+  const auto emit = [&](const PolygonVertex& a, const PolygonVertex& b, const PolygonVertex& c) {
+    out.push_back(reversed ? std::array<Index, 3>{a.id, c.id, b.id} : std::array<Index, 3>{a.id, b.id, c.id});
   };
   // Ear clipping: every strict corner of a convex polygon is an ear. Clipping
   // the first one after the start gives a fan from the start when there are
@@ -155,7 +179,7 @@ void triangulate_convex_polygon(const Mesh& mesh, std::span<const Index> cycle,
     std::size_t ear = n;
     for (std::size_t i = 1; i <= n; ++i) {
       const std::size_t at = i % n;
-      if (is_strict_corner(mesh, polygon[(at + n - 1) % n], polygon[at], polygon[(at + 1) % n]) &&
+      if (!on_a_line(mesh, polygon[(at + n - 1) % n], polygon[at], polygon[(at + 1) % n]) &&
           leaves_area(mesh, polygon, at)) {
         ear = at;
         break;
@@ -165,7 +189,7 @@ void triangulate_convex_polygon(const Mesh& mesh, std::span<const Index> cycle,
     emit(polygon[(ear + n - 1) % n], polygon[ear], polygon[(ear + 1) % n]);
     polygon.erase(polygon.begin() + static_cast<std::ptrdiff_t>(ear));
   }
-  if (!is_strict_corner(mesh, polygon[0], polygon[1], polygon[2])) {
+  if (on_a_line(mesh, polygon[0], polygon[1], polygon[2])) {
     throw RunError("triangle insertion: a polygon of a cut is degenerate");
   }
   emit(polygon[0], polygon[1], polygon[2]);

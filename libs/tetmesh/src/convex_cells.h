@@ -24,6 +24,10 @@ namespace mr::tetmesh::detail {
 struct CellTriangle {
   std::array<Index, 3> corners;
   const std::vector<std::uint32_t>* ids = nullptr;
+  /// Triangles with the same plane >= 0 lie on one plane (the same face of
+  /// the cell): lets the cone test skip exactly coplanar evaluations, which
+  /// are the costly ones. -1: unknown.
+  int plane = -1;
 };
 
 /// A tet made for a cell, and the ids to mark on each of its faces (face k
@@ -40,8 +44,11 @@ bool collinear(const HybridPoint& p, const HybridPoint& q, const HybridPoint& r)
 /// Appends the triangles of the convex polygon `cycle` (planar, at least
 /// three non-collinear corners, flat points allowed), oriented as the cycle.
 /// Canonical: the same triangles, up to orientation, for any rotation or
-/// reversal of the cycle.
+/// reversal of the cycle. `sides`, if not empty, gives per cycle entry a bit
+/// set of the polygon sides it lies on (a corner two, a flat point one):
+/// three entries sharing a side are collinear without an exact evaluation.
 void triangulate_convex_polygon(const Mesh& mesh, std::span<const Index> cycle,
+                                std::span<const std::uint32_t> sides,
                                 std::vector<std::array<Index, 3>>& out);
 
 /// True when every triangle of `boundary` that does not have `apex` as a

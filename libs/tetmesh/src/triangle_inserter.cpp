@@ -185,6 +185,7 @@ bool TriangleInserter::is_cut(Index t) {
     below |= s < 0;
   }
   if (!above || !below) return false;
+  if (section_outside_a_line(t)) return false;
   std::vector<HybridPoint> section;
   const Tet& c = mesh_.tet(t);
   for (int i = 0; i < 4; ++i) {
@@ -194,6 +195,27 @@ bool TriangleInserter::is_cut(Index t) {
     if (plane_sign(c[i]) * plane_sign(c[j]) < 0) section.push_back(plane_point(c[i], c[j]));
   }
   return overlaps_triangle(section);
+}
+
+// A cheap exact pre-test on the corners' sides only: the section lies
+// strictly outside line j when its corners on P do and both ends of every
+// crossed edge do (a cut point is between its edge's ends).
+bool TriangleInserter::section_outside_a_line(Index t) {
+  const Tet& c = mesh_.tet(t);
+  for (int line = 0; line < 3; ++line) {
+    bool outside = true;
+    for (int i = 0; i < 4 && outside; ++i) {
+      if (plane_sign(c[i]) == 0 && line_side(line, c[i]) >= 0) outside = false;
+    }
+    for (const auto& [i, j] : kTetEdges) {
+      if (!outside) break;
+      if (plane_sign(c[i]) * plane_sign(c[j]) < 0 && (line_side(line, c[i]) >= 0 || line_side(line, c[j]) >= 0)) {
+        outside = false;
+      }
+    }
+    if (outside) return true;
+  }
+  return false;
 }
 
 const HybridPoint& TriangleInserter::plane_point(Index u, Index v) {
@@ -460,11 +482,19 @@ void TriangleInserter::append_edge_interior(Index u, Index v, std::vector<Index>
   append_edge_interior(it->second, v, out);
 }
 
-std::vector<Index> TriangleInserter::with_flat_points(const std::vector<Index>& polygon) const {
+// The polygon with the flat points of its sides, and per entry the bit set
+// of the sides it lies on (corner i is on sides i - 1 and i).
+std::vector<Index> TriangleInserter::with_flat_points(const std::vector<Index>& polygon,
+                                                     std::vector<std::uint32_t>& sides) const {
   std::vector<Index> result;
-  for (std::size_t i = 0; i < polygon.size(); ++i) {
+  sides.clear();
+  const std::size_t n = polygon.size();
+  const auto bit = [](std::size_t side) { return side < 32 ? 1u << side : 0u; };
+  for (std::size_t i = 0; i < n; ++i) {
     result.push_back(polygon[i]);
-    append_edge_interior(polygon[i], polygon[(i + 1) % polygon.size()], result);
+    sides.push_back(bit(i) | bit((i + n - 1) % n));
+    append_edge_interior(polygon[i], polygon[(i + 1) % n], result);
+    sides.resize(result.size(), bit(i));
   }
   return result;
 }
@@ -484,13 +514,15 @@ std::vector<TriangleInserter::Piece> TriangleInserter::face_pieces(Index t, int 
   return pieces;
 }
 
-void TriangleInserter::add_polygon(const std::vector<Index>& polygon, const Ids& ids,
+void TriangleInserter::add_polygon(const std::vector<Index>& polygon, const Ids& ids, int plane,
                                    std::vector<CellTriangle>& cell) {
   std::vector<std::array<Index, 3>> triangles;
-  triangulate_convex_polygon(mesh_, with_flat_points(polygon), triangles);
+  std::vector<std::uint32_t> sides;
+  const std::vector<Index> expanded = with_flat_points(polygon, sides);
+  triangulate_convex_polygon(mesh_, expanded, sides, triangles);
   const Ids* stored = nullptr;
   if (!ids.empty()) stored = &ids_storage_.emplace_back(ids);
-  for (const auto& triangle : triangles) cell.push_back({triangle, stored});
+  for (const auto& triangle : triangles) cell.push_back({triangle, stored, plane});
 }
 
 void TriangleInserter::build_cell(std::vector<CellTriangle>& cell, std::vector<ConeTet>& tets) {
@@ -519,14 +551,14 @@ void TriangleInserter::rebuild_cavity() {
             for (Index v : piece.corners) piece_side = piece_side != 0 ? piece_side : plane_sign(v);
             if (piece_side != sign) continue;
           }
-          add_polygon(piece.corners, piece.ids, cell);
+          add_polygon(piece.corners, piece.ids, k, cell);
         }
       }
       if (cut) {
         for (const Piece& piece : section_pieces_.at(t)) {
           std::vector<Index> polygon = piece.corners;
           if (sign < 0) std::reverse(polygon.begin(), polygon.end());
-          add_polygon(polygon, piece.ids, cell);
+          add_polygon(polygon, piece.ids, 4, cell);  // the section: plane P
         }
       }
       build_cell(cell, tets);

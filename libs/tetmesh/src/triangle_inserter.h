@@ -76,6 +76,7 @@ class TriangleInserter {
   bool may_meet_triangle(Index t);
   void collect_candidates();
   bool is_cut(Index t);
+  bool section_outside_a_line(Index t);
   const HybridPoint& plane_point(Index u, Index v);
   bool overlaps_triangle(std::span<const HybridPoint> points);
 
@@ -92,10 +93,10 @@ class TriangleInserter {
   void add_to_cavity(Index t);
   void walk_around_edge(Index u, Index v, Index seed);
 
-  std::vector<Index> with_flat_points(const std::vector<Index>& polygon) const;
+  std::vector<Index> with_flat_points(const std::vector<Index>& polygon, std::vector<std::uint32_t>& sides) const;
   void append_edge_interior(Index u, Index v, std::vector<Index>& out) const;
   std::vector<Piece> face_pieces(Index t, int face);
-  void add_polygon(const std::vector<Index>& polygon, const Ids& ids, std::vector<CellTriangle>& cell);
+  void add_polygon(const std::vector<Index>& polygon, const Ids& ids, int plane, std::vector<CellTriangle>& cell);
   void build_cell(std::vector<CellTriangle>& cell, std::vector<ConeTet>& tets);
   void rebuild_cavity();
   void note_new_vertex(Index v);
