@@ -116,7 +116,9 @@ ImproveStats run_passes(Mesh& mesh, const envelope::Envelope& envelope, const Im
     max_energy = max_tet_energy(mesh);
     logger.log(LogLevel::debug, pass_summary(pass + 1, stats, max_energy));
     logger.progress("improve", double(pass + 1) / options.max_passes);
-    const bool stalled = max_energy > 0.99 * previous;
+    // Written so that an energy stuck at infinity (a tet flat on the doubles)
+    // also counts as stalled: inf > 0.99 * inf is false.
+    const bool stalled = !(max_energy < 0.99 * previous);
     if (stalled && max_energy >= options.stop_energy) {
       if (refinements >= options.max_refinements) break;
       ++refinements;

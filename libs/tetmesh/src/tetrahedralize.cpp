@@ -141,13 +141,15 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, co
   {
     StageTimer timer(result.stats, "filter", logger);
     if (options.filter) {
-      // The winding number of the surface that was embedded (the simplified
-      // input), not of the raw input: its jumps then lie exactly on tracked
-      // faces, so the kept tets end there. Filtering with the raw input
-      // kept big tets whose centroid fell between the two surfaces (up to
-      // 0.8 epsilon apart), and their far faces left the envelope.
+      // The winding number of the tracked surface as it is now (after
+      // rounding and improvement moved it within the envelope), not of the
+      // raw input: its jumps then lie exactly on tracked faces, so the kept
+      // tets end there. Filtering with the input kept big tets whose
+      // centroid fell between the two surfaces, and their far faces left
+      // the envelope.
+      const TriangleSoup tracked = detail::tracked_surface(mesh, {}, surface);
       const TetClassification classes =
-          classify_tets(mesh, WindingNumberTree(surface), options.tetrahedralize.winding_rule);
+          classify_tets(mesh, WindingNumberTree(tracked), options.tetrahedralize.winding_rule);
       keep = classes.keep;
       count(timer, "kept_tets", classes.kept);
     }
