@@ -49,7 +49,7 @@ void count(StageTimer& timer, const char* key, std::size_t value) {
 // Insertions to try before giving up: after a failed rounding, the
 // triangles that created the stuck points are left out and the embedding
 // starts over from a fresh background mesh.
-constexpr int kEmbeddingAttempts = 4;
+constexpr int kEmbeddingAttempts = 8;
 
 Mesh embed(const TriangleSoup& surface, const DerivedParameters& derived, const PipelineOptions& options,
            PipelineStats& stats, const Logger& logger) {
