@@ -90,7 +90,8 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   io::write_surface(registry, repaired.surface, files[1]);
   const double seconds_write = seconds_since(start);
   if (!options.stats_path.empty())
-    write_stats_file(options.stats_path, make_repair_stats({input, pipeline, repaired, seconds_read, seconds_write}));
+    cli::write_stats_file(options.stats_path,
+                          make_repair_stats({input, pipeline, repaired, seconds_read, seconds_write}).dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << repaired.surface.triangles.size()
         << " faces, watertight (" << repaired.manifold.nonmanifold_edges_found + repaired.manifold.nonmanifold_vertices_found

@@ -5,7 +5,6 @@
 #include <mr/core/errors.h>
 
 #include <chrono>
-#include <fstream>
 
 namespace mr::tools {
 namespace {
@@ -88,12 +87,6 @@ nlohmann::json make_repair_stats(const RepairRun& run) {
                           {"stages", stage_seconds(run)}};
   stats["seconds_measuring"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
-}
-
-void write_stats_file(const std::string& path, const nlohmann::json& stats) {
-  std::ofstream file(path);
-  file << stats.dump(2) << "\n";
-  if (!file) throw RunError(path + ": cannot write the statistics file");
 }
 
 }  // namespace mr::tools

@@ -20,7 +20,4 @@ struct RepairRun {
 
 nlohmann::json make_repair_stats(const RepairRun& run);
 
-/// Writes `stats` to `path`; mr::RunError when it cannot.
-void write_stats_file(const std::string& path, const nlohmann::json& stats);
-
 }  // namespace mr::tools

@@ -9,7 +9,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <fstream>
 #include <ostream>
 
 namespace mr::tools {
@@ -74,12 +73,6 @@ nlohmann::json make_stats(const ToolOptions& o, const TriangleSoup& input, const
           {"distance_samples", distance.samples}};
 }
 
-void write_stats(const std::string& path, const nlohmann::json& stats) {
-  std::ofstream file(path);
-  file << stats.dump(2) << "\n";
-  if (!file) throw RunError(path + ": cannot write the statistics file");
-}
-
 }  // namespace
 
 int simplify_in_envelope(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -90,7 +83,9 @@ int simplify_in_envelope(const std::vector<std::string>& args, std::ostream& out
     const TriangleSoup input = io::read_surface(registry, files[0]);
     const simplify::SimplifyResult result = simplify::simplify_in_envelope(input, options.simplify);
     io::write_surface(registry, result.soup, files[1]);
-    if (!options.stats_path.empty()) write_stats(options.stats_path, make_stats(options, input, result));
+    if (!options.stats_path.empty()) {
+      cli::write_stats_file(options.stats_path, make_stats(options, input, result).dump(2));
+    }
     if (!options.quiet)
       out << files[0] << ": " << result.faces_before << " -> " << result.faces_after << " faces ("
           << result.collapses << " collapses, " << result.flips << " flips, epsilon " << result.epsilon << ")\n";

@@ -12,7 +12,6 @@
 
 #include <sys/resource.h>
 
-#include <fstream>
 #include <ostream>
 
 namespace mr::tools {
@@ -110,12 +109,6 @@ nlohmann::json make_stats(const TriangleSoup& input, const tetmesh::PipelineResu
   return stats;
 }
 
-void write_stats(const std::string& path, const nlohmann::json& stats) {
-  std::ofstream file(path);
-  file << stats.dump(2) << "\n";
-  if (!file) throw RunError(path + ": cannot write the statistics file");
-}
-
 }  // namespace
 
 int tetrahedralize(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -145,7 +138,9 @@ int tetrahedralize(const std::vector<std::string>& args, std::ostream& out, std:
     }
     io::write_volume(registry, result.mesh, files[1], options.write);
     if (!options.surface_path.empty()) io::write_surface(registry, result.tracked_surface, options.surface_path);
-    if (!options.stats_path.empty()) write_stats(options.stats_path, make_stats(input, result, quality));
+    if (!options.stats_path.empty()) {
+      cli::write_stats_file(options.stats_path, make_stats(input, result, quality).dump(2));
+    }
     if (!options.quiet) {
       out << files[0] << ": " << result.mesh.tets.size() << " tets, " << result.mesh.positions.size()
           << " vertices, min dihedral " << quality.min_dihedral_deg << " deg, max AMIPS "

@@ -2,6 +2,7 @@
 #include <mr/core/errors.h>
 
 #include <algorithm>
+#include <fstream>
 #include <new>
 #include <ostream>
 
@@ -39,6 +40,16 @@ int run_tool(const ToolSpec& spec, const std::vector<std::string>& args, std::os
     err << spec.name << ": error: " << e.what() << "\n";
     return exit_failure;
   }
+}
+
+}  // namespace mr::cli
+
+namespace mr::cli {
+
+void write_stats_file(const std::string& path, const std::string& json_text) {
+  std::ofstream file(path);
+  file << json_text << "\n";
+  if (!file) throw RunError(path + ": cannot write the statistics file");
 }
 
 }  // namespace mr::cli

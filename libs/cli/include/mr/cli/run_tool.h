@@ -24,3 +24,11 @@ std::vector<std::string> arguments(int argc, char** argv);
 std::string version_string();
 
 }  // namespace mr::cli
+
+namespace mr::cli {
+
+/// Writes a tool's statistics (JSON text) to `path`; mr::RunError naming
+/// the file when it cannot be written.
+void write_stats_file(const std::string& path, const std::string& json_text);
+
+}  // namespace mr::cli
