@@ -5,6 +5,7 @@
 #include <mr/core/triangle_soup.h>
 
 #include <filesystem>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,11 @@ struct ToolRun {
   std::string out;
   std::string err;
 };
+/// The signature every tool's in-process entry point has (tools/*/NAME.h).
+using ToolMain = int (*)(const std::vector<std::string>&, std::ostream&, std::ostream&);
+
+/// Runs a tool in-process, capturing its exit code and both streams.
+ToolRun run_tool(ToolMain tool, const std::vector<std::string>& args);
 ToolRun run_format_convert(const std::vector<std::string>& args);
 
 /// Signed volume enclosed by a closed, consistently oriented soup.

@@ -19,14 +19,7 @@ using namespace mr;
 
 namespace {
 
-test::ToolRun run_extract_boundary(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  test::ToolRun run;
-  run.exit_code = tools::extract_boundary(args, out, err);
-  run.out = out.str();
-  run.err = err.str();
-  return run;
-}
+test::ToolRun run_extract_boundary(const std::vector<std::string>& args) { return test::run_tool(tools::extract_boundary, args); }
 
 repair::BoundaryRequest request(repair::BoundaryMode mode, std::int32_t label = 0) {
   repair::BoundaryRequest r;

@@ -251,14 +251,7 @@ TEST_CASE("simplify_in_envelope_of keeps the surface in the reference's envelope
 
 namespace {
 
-test::ToolRun run_meshrepair(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  test::ToolRun run;
-  run.exit_code = tools::meshrepair(args, out, err);
-  run.out = out.str();
-  run.err = err.str();
-  return run;
-}
+test::ToolRun run_meshrepair(const std::vector<std::string>& args) { return test::run_tool(tools::meshrepair, args); }
 
 std::vector<char> file_bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -69,14 +69,16 @@ void write_bytes(const std::filesystem::path& path, const std::vector<char>& byt
   std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
-ToolRun run_format_convert(const std::vector<std::string>& args) {
+ToolRun run_tool(ToolMain tool, const std::vector<std::string>& args) {
   std::ostringstream out, err;
   ToolRun run;
-  run.exit_code = tools::format_convert(args, out, err);
+  run.exit_code = tool(args, out, err);
   run.out = out.str();
   run.err = err.str();
   return run;
 }
+
+ToolRun run_format_convert(const std::vector<std::string>& args) { return run_tool(tools::format_convert, args); }
 
 double enclosed_volume(const TriangleSoup& soup) {
   double six_volume = 0;

@@ -68,14 +68,7 @@ std::vector<Case> broken_inputs() {
   };
 }
 
-test::ToolRun run_tetrahedralize(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  test::ToolRun run;
-  run.exit_code = tools::tetrahedralize(args, out, err);
-  run.out = out.str();
-  run.err = err.str();
-  return run;
-}
+test::ToolRun run_tetrahedralize(const std::vector<std::string>& args) { return test::run_tool(tools::tetrahedralize, args); }
 
 std::string file_bytes(const std::filesystem::path& path) {
   std::ifstream file(path, std::ios::binary);

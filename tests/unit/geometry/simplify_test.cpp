@@ -292,14 +292,7 @@ TEST_CASE("simplification rejects bad options", "[simplify]") {
 
 namespace {
 
-mr::test::ToolRun run_simplify(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  mr::test::ToolRun run;
-  run.exit_code = mr::tools::simplify_in_envelope(args, out, err);
-  run.out = out.str();
-  run.err = err.str();
-  return run;
-}
+mr::test::ToolRun run_simplify(const std::vector<std::string>& args) { return mr::test::run_tool(mr::tools::simplify_in_envelope, args); }
 
 }  // namespace
 
