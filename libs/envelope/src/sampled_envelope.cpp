@@ -30,6 +30,11 @@
 // longest-edge bisection (longest edges never grow from parent to child)
 // and checks each piece with its own, usually larger, eps - L_i/sqrt(3).
 //
+// Shortcut. The distance to one convex input triangle is a convex function,
+// so if every corner of a query element is within limit of the same input
+// triangle, so is the whole element: no sampling needed. This decides most
+// elements lying on the input (tracked faces, their sub-triangles) at once.
+//
 // Rounding: sample positions and distances are computed in doubles. Every
 // threshold uses limit = eps - margin, where margin (1e-9 of the input's
 // size plus 64 ulps of its largest coordinate) dominates those errors.
@@ -118,6 +123,7 @@ bool SampledEnvelope::is_inside(const Vec3d& p) const {
 bool SampledEnvelope::is_inside(const Vec3d& a, const Vec3d& b) const {
   if (!all_finite({&a, &b})) return false;
   if (pattern_ == SamplingPattern::Lattice) return lattice_segment(a, b);
+  if (near_one_input_triangle({a, b})) return true;
   const double accept = limit_ - 0.5 * (b - a).norm();
   const double da = sample(a, accept);
   if (da == kInfinity) return false;
@@ -129,6 +135,7 @@ bool SampledEnvelope::is_inside(const Vec3d& a, const Vec3d& b) const {
 bool SampledEnvelope::is_inside(const Vec3d& a, const Vec3d& b, const Vec3d& c) const {
   if (!all_finite({&a, &b, &c})) return false;
   if (pattern_ == SamplingPattern::Lattice) return lattice_triangle(a, b, c);
+  if (near_one_input_triangle({a, b, c})) return true;
   const std::array<Vec3d, 3> v{a, b, c};
   const double accept = limit_ - longest_edge_length(v) * kInvSqrt3;
   std::array<double, 3> d{};
@@ -169,7 +176,12 @@ bool SampledEnvelope::adaptive_triangle(const std::array<Vec3d, 3>& v,
   return adaptive_triangle(first, {d[i], dm, d[k]}) && adaptive_triangle(second, {dm, d[j], d[k]});
 }
 
+bool SampledEnvelope::near_one_input_triangle(std::initializer_list<Vec3d> corners) const {
+  return tree_.one_triangle_near_all(std::span(corners.begin(), corners.size()), limit_ * limit_);
+}
+
 bool SampledEnvelope::lattice_segment(const Vec3d& a, const Vec3d& b) const {
+  if (near_one_input_triangle({a, b})) return true;
   const double length = (b - a).norm();
   const double n = std::max(1.0, std::ceil(length / step_));
   const double threshold = limit_ - 0.5 * length / n;
@@ -203,6 +215,7 @@ bool SampledEnvelope::lattice_triangle(const Vec3d& a, const Vec3d& b, const Vec
     worst_corner_sq = std::max(worst_corner_sq, d_sq);
   }
   if (accepts(worst_corner_sq, length * kInvSqrt3)) return true;
+  if (near_one_input_triangle({a, b, c})) return true;
   const Vec3d ab = b - a;
   const Vec3d ac = c - a;
   for (double i = 0; i <= n; ++i) {

@@ -5,6 +5,8 @@
 #include <mr/envelope/envelope.h>
 #include <mr/spatial/aabb_tree.h>
 
+#include <initializer_list>
+
 namespace mr::envelope {
 
 class SampledEnvelope final : public Envelope {
@@ -21,6 +23,8 @@ class SampledEnvelope final : public Envelope {
   // lies in (accept^2, limit^2], infinity beyond limit (see the tree).
   double sample(const Vec3d& p, double accept) const;
   bool accepts(double squared_distance, double covering_radius) const;
+  // Whether the corners (hence their hull) are all within limit of one input triangle.
+  bool near_one_input_triangle(std::initializer_list<Vec3d> corners) const;
 
   bool adaptive_segment(const Vec3d& a, const Vec3d& b, double da, double db) const;
   bool adaptive_triangle(const std::array<Vec3d, 3>& v, const std::array<double, 3>& d) const;

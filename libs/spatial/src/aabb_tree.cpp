@@ -122,6 +122,20 @@ double AabbTree::squared_distance_bounded(const Vec3d& p, double accept_sq, doub
   return found ? bound_sq : kInfinity;
 }
 
+bool AabbTree::one_triangle_near_all(std::span<const Vec3d> points, double r_sq) const {
+  if (!(r_sq >= 0.0) || points.empty()) return false;
+  double bound_sq = r_sq;  // never shrinks: every triangle near points[0] is a candidate
+  bool found = false;
+  traverse(points[0], bound_sq, [&](std::uint32_t slot) {
+    const Vec3d* c = &corners_[3 * std::size_t{slot}];
+    found = std::all_of(points.begin(), points.end(), [&](const Vec3d& p) {
+      return closest_on_triangle(p, c[0], c[1], c[2]).squared_distance <= r_sq;
+    });
+    return found;
+  });
+  return found;
+}
+
 bool AabbTree::any_within(const Vec3d& p, double r) const {
   if (!(r >= 0.0)) return false;
   const double r_sq = r * r;

@@ -86,14 +86,41 @@ std::vector<Index> surface_neighbours(const std::vector<TrackedFace>& faces, Ind
 
 bool contains(const FaceKey& key, Index v) { return std::find(key.begin(), key.end(), v) != key.end(); }
 
-// The tracked surface around u is a disk (every surface edge at u has two
-// faces), uv is one of its edges, and the surface link condition holds.
+// Number of faces among `faces` that contain both a and b.
+std::size_t faces_on_edge(const std::vector<TrackedFace>& faces, Index a, Index b) {
+  return std::size_t(std::count_if(faces.begin(), faces.end(), [&](const TrackedFace& f) {
+    return contains(f.key, a) && contains(f.key, b);
+  }));
+}
+
+// The surface neighbours x of u whose edge (u, x) does not have exactly two
+// faces: an open boundary (one face) or a line where surfaces meet or cross
+// (three or more). Such edges form the surface's feature lines.
+std::vector<Index> feature_neighbours(const std::vector<TrackedFace>& at_u, Index u) {
+  std::vector<Index> out;
+  for (const Index x : surface_neighbours(at_u, u)) {
+    if (faces_on_edge(at_u, u, x) != 2) out.push_back(x);
+  }
+  return out;
+}
+
+// Whether collapsing u onto v keeps the tracked surface's topology:
+// - uv is a surface edge, and the link condition of the surface (a
+//   2-complex) holds: the common neighbours of u and v are exactly the third
+//   corners of the faces on uv, and no two faces (u, a, b), (v, a, b) exist;
+// - feature lines are kept: a vertex on one (not at a corner where lines
+//   meet or end) may only slide along it, so u must have exactly two
+//   feature edges of the same multiplicity, uv being one of them. Vertices
+//   off every feature line may collapse along any manifold edge.
 bool surface_allows(const std::vector<TrackedFace>& at_u, const std::vector<TrackedFace>& at_v, Index u,
                     Index v) {
-  for (const Index x : surface_neighbours(at_u, u)) {
-    const auto faces = std::count_if(at_u.begin(), at_u.end(),
-                                     [&](const TrackedFace& f) { return contains(f.key, x); });
-    if (faces != 2) return false;
+  const std::size_t on_uv = faces_on_edge(at_u, u, v);
+  if (on_uv == 0) return false;
+  const std::vector<Index> features = feature_neighbours(at_u, u);
+  if (!features.empty()) {
+    if (features.size() != 2 || !std::binary_search(features.begin(), features.end(), v)) return false;
+    const Index w = features[0] == v ? features[1] : features[0];
+    if (faces_on_edge(at_u, u, w) != on_uv) return false;
   }
   std::vector<Index> across;  // third corners of the faces on edge uv
   for (const TrackedFace& f : at_u) {
@@ -102,9 +129,19 @@ bool surface_allows(const std::vector<TrackedFace>& at_u, const std::vector<Trac
       if (w != u && w != v) across.push_back(w);
     }
   }
-  if (across.size() != 2) return false;
   std::sort(across.begin(), across.end());
-  return intersection(surface_neighbours(at_u, u), surface_neighbours(at_v, v)) == across;
+  if (intersection(surface_neighbours(at_u, u), surface_neighbours(at_v, v)) != across) return false;
+  // Faces (u, a, b) and (v, a, b) would become one face twice.
+  for (const TrackedFace& f : at_u) {
+    if (contains(f.key, v)) continue;
+    FaceKey moved = f.key;
+    std::replace(moved.begin(), moved.end(), u, v);
+    moved = face_key(moved);
+    if (std::any_of(at_v.begin(), at_v.end(), [&](const TrackedFace& g) { return g.key == moved; })) {
+      return false;
+    }
+  }
+  return true;
 }
 
 bool new_edges_short_enough(const Workspace& ws, const Link& lu, const Link& lv, Index u, Index v) {

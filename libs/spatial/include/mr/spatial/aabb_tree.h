@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 namespace mr::spatial {
@@ -61,6 +62,12 @@ class AabbTree {
   ///  - +infinity, if it exceeds cap_sq.
   /// So s is always an upper bound of the true value, and exact when it matters.
   double squared_distance_bounded(const Vec3d& p, double accept_sq, double cap_sq) const;
+
+  /// True when one single triangle has every point of `points` within
+  /// squared distance r_sq. Since the distance to a triangle is a convex
+  /// function, the whole convex hull of the points is then within that
+  /// distance of the triangle. `points` must not be empty.
+  bool one_triangle_near_all(std::span<const Vec3d> points, double r_sq) const;
 
   struct Node {
     double lo[3];
