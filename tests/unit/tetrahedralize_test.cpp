@@ -54,6 +54,12 @@ std::vector<Case> broken_inputs() {
   sliver.positions.push_back({0.8, 0.5, 0.5});
   sliver.positions.push_back({0.5, 0.5 + 1e-9, 0.5});  // a needle inside the cube
   sliver.triangles.push_back({base, base + 1, base + 2});
+  TriangleSoup flipped_face = test::cube_soup();
+  for (std::size_t f = 0; f < 2; ++f) std::swap(flipped_face.triangles[f][1], flipped_face.triangles[f][2]);
+  TriangleSoup hollow = test::cube_soup(0.0, 3.0);
+  TriangleSoup cavity = test::cube_soup(1.0, 2.0);
+  for (Triangle& t : cavity.triangles) std::swap(t[1], t[2]);  // inward: a deliberate cavity
+  hollow.append(cavity);
   const double area_eps = 6 * 1e-3 * std::sqrt(3.0) * 2;  // two unit cubes' area times epsilon
   return {
       {"cube", test::cube_soup(), 1.0, area_eps},
@@ -65,6 +71,8 @@ std::vector<Case> broken_inputs() {
        2.0, area_eps},
       {"duplicated faces", duplicated, 1.0, area_eps},
       {"sliver triangle", sliver, 1.0, area_eps},
+      {"cube with a flipped face", flipped_face, 1.0, area_eps},
+      {"hollow cube (inward inner shell)", hollow, 26.0, 3e-3 * std::sqrt(3.0) * 60},
   };
 }
 

@@ -1,5 +1,7 @@
 #include "regions.h"
 
+#include <mr/core/orientation.h>
+
 #include <mr/kernel/predicates.h>
 
 #include <tbb/blocked_range.h>
@@ -35,6 +37,7 @@ std::vector<std::int32_t> region_labels(const Mesh& mesh) {
 TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const TriangleSoup& input) {
   const auto kept = [&](Index t) { return t != kNoTet && mesh.tet_alive(t) && (keep.empty() || keep[t] != 0); };
   TriangleSoup surface;
+  std::vector<double> votes;
   std::vector<Index> used(mesh.vertex_slots(), kNoVertex);
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
     if (!kept(t)) continue;
@@ -44,11 +47,15 @@ TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const
       std::array<Index, 3> f = mesh.face_vertices(t, k);
       const Triangle& source = input.triangles[mesh.surface_ids(t, k).front()];
       const Vec3d input_normal = (input.positions[source[1]] - input.positions[source[0]])
-                                     .cross(input.positions[source[2]] - input.positions[source[0]]);
+                                     .cross(input.positions[source[2]] - input.positions[source[0]])
+                                     .normalized();
       const Vec3d& a = mesh.position(f[0]).approx;
-      if ((mesh.position(f[1]).approx - a).cross(mesh.position(f[2]).approx - a).dot(input_normal) < 0) {
+      double agreement = (mesh.position(f[1]).approx - a).cross(mesh.position(f[2]).approx - a).dot(input_normal);
+      if (agreement < 0) {
         std::swap(f[1], f[2]);
+        agreement = -agreement;
       }
+      votes.push_back(agreement);
       Triangle out;
       for (int i = 0; i < 3; ++i) {
         if (used[f[i]] == kNoVertex) {
@@ -60,6 +67,11 @@ TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const
       surface.triangles.push_back(out);
     }
   }
+  // The normal test above is only a guess for faces that moved away from
+  // the plane of their input triangle (improvement, or faces merged across a
+  // crease): orient each patch coherently, trusting faces by how well
+  // their normal agreed with their triangle's.
+  orient_coherently(surface, votes);
   return surface;
 }
 

@@ -4,6 +4,7 @@
 #include "rounding_stage.h"
 
 #include <mr/core/errors.h>
+#include <mr/core/orientation.h>
 #include <mr/envelope/envelope.h>
 #include <mr/simplify/simplify.h>
 #include <mr/spatial/aabb_tree.h>
@@ -51,8 +52,14 @@ void count(StageTimer& timer, const char* key, std::size_t value) {
 // starts over from a fresh background mesh.
 constexpr int kEmbeddingAttempts = 8;
 
-Mesh embed(const TriangleSoup& surface, const DerivedParameters& derived, const PipelineOptions& options,
-           PipelineStats& stats, const Logger& logger) {
+std::unique_ptr<envelope::Envelope> input_envelope(const TriangleSoup& input, const DerivedParameters& derived) {
+  envelope::EnvelopeOptions envelope_options;
+  envelope_options.epsilon = derived.epsilon;
+  return envelope::make_envelope(input, envelope_options);
+}
+
+Mesh embed(const TriangleSoup& surface, const envelope::Envelope& envelope, const DerivedParameters& derived,
+           const PipelineOptions& options, PipelineStats& stats, const Logger& logger) {
   std::vector<char> skip(surface.triangles.size(), 0);
   for (int attempt = 1;; ++attempt) {
     BackgroundMesh background;
@@ -81,8 +88,15 @@ Mesh embed(const TriangleSoup& surface, const DerivedParameters& derived, const 
     const detail::RoundingCounters rounding = detail::round_or_collapse(mesh, 1e-3 * derived.epsilon);
     count(timer, "rounded", rounding.rounded);
     count(timer, "collapsed", rounding.collapsed);
-    count(timer, "rational_vertices", rounding.remaining);
-    if (rounding.remaining == 0) return std::move(mesh);
+    std::size_t remaining = rounding.remaining;
+    if (remaining != 0) {
+      // Moves within the envelope: to nearby doubles, or onto any neighbour.
+      const RoundingStats moved = round_vertices(mesh, envelope, logger);
+      count(timer, "moved", moved.moved + moved.collapsed);
+      remaining = moved.remaining;
+    }
+    count(timer, "rational_vertices", remaining);
+    if (remaining == 0) return std::move(mesh);
     std::size_t newly_skipped = 0;
     for (Index v = 0; v < mesh.vertex_slots(); ++v) {
       if (!mesh.vertex_alive(v) || !mesh.position(v).is_exact()) continue;
@@ -93,26 +107,23 @@ Mesh embed(const TriangleSoup& surface, const DerivedParameters& derived, const 
       }
     }
     if (attempt == kEmbeddingAttempts || newly_skipped == 0) {
-      throw RunError(std::to_string(rounding.remaining) + " cut points could not be rounded to doubles "
+      throw RunError(std::to_string(remaining) + " cut points could not be rounded to doubles "
                      "without inverting a tet; the mesh is not written");
     }
-    logger.log(LogLevel::warning, std::to_string(rounding.remaining) + " cut points could not be rounded: "
+    logger.log(LogLevel::warning, std::to_string(remaining) + " cut points could not be rounded: "
                "inserting again without the " + std::to_string(newly_skipped) + " triangles that made them");
   }
 }
 
-void improve(Mesh& mesh, const TriangleSoup& input, const DerivedParameters& derived,
+void improve(Mesh& mesh, const envelope::Envelope& envelope, const DerivedParameters& derived,
              const PipelineOptions& options, PipelineStats& stats, const Logger& logger) {
   StageTimer timer(stats, "improve", logger);
-  envelope::EnvelopeOptions envelope_options;
-  envelope_options.epsilon = derived.epsilon;
-  const std::unique_ptr<envelope::Envelope> envelope = envelope::make_envelope(input, envelope_options);
   ImproveOptions improve_options;
   improve_options.target_edge_length = derived.edge_length;
   improve_options.stop_energy = options.tetrahedralize.stop_energy;
   improve_options.max_passes = options.tetrahedralize.max_passes;
   improve_options.threads = options.tetrahedralize.threads;
-  const ImproveStats improved = improve_mesh(mesh, *envelope, improve_options, logger);
+  const ImproveStats improved = improve_mesh(mesh, envelope, improve_options, logger);
   count(timer, "passes", static_cast<std::size_t>(improved.passes));
   count(timer, "splits", improved.splits);
   count(timer, "collapses", improved.collapses);
@@ -120,7 +131,7 @@ void improve(Mesh& mesh, const TriangleSoup& input, const DerivedParameters& der
   count(timer, "smoothing_moves", improved.smoothing_moves);
   count(timer, "rational_vertices", improved.rational_vertices);
   if (improved.rational_vertices != 0) {
-    const RoundingStats rounded = round_vertices(mesh, *envelope, logger);
+    const RoundingStats rounded = round_vertices(mesh, envelope, logger);
     if (rounded.remaining != 0) {
       throw RunError(std::to_string(rounded.remaining) + " vertices could not be rounded to doubles after "
                      "mesh improvement; the mesh is not written");
@@ -128,14 +139,28 @@ void improve(Mesh& mesh, const TriangleSoup& input, const DerivedParameters& der
   }
 }
 
+// Faces flipped against their neighbours would make the winding number dip
+// inside the solid; orienting patches coherently first keeps the filter sound.
+TriangleSoup oriented_input(const TriangleSoup& input, PipelineStats& stats, const Logger& logger) {
+  StageTimer timer(stats, "orient", logger);
+  TriangleSoup oriented = input;
+  const OrientationStats orientation = orient_coherently(oriented);
+  count(timer, "patches", orientation.patches);
+  count(timer, "flipped", orientation.flipped);
+  count(timer, "conflicts", orientation.conflicts);
+  return oriented;
+}
+
 PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, const Logger& logger) {
   PipelineResult result;
   result.parameters = derive_parameters(options.tetrahedralize, input);
   const DerivedParameters& derived = result.parameters;
-  const TriangleSoup surface = simplified_input(input, options, derived, result.stats, logger);
+  const TriangleSoup oriented = oriented_input(input, result.stats, logger);
+  const TriangleSoup surface = simplified_input(oriented, options, derived, result.stats, logger);
 
-  Mesh mesh = embed(surface, derived, options, result.stats, logger);
-  if (options.improve) improve(mesh, input, derived, options, result.stats, logger);
+  const std::unique_ptr<envelope::Envelope> envelope = input_envelope(input, derived);
+  Mesh mesh = embed(surface, *envelope, derived, options, result.stats, logger);
+  if (options.improve) improve(mesh, *envelope, derived, options, result.stats, logger);
 
   std::vector<char> keep;
   {

@@ -1,0 +1,115 @@
+// Coherent orientation of soups: flipped faces are turned back, whole
+// shells keep the orientation of the larger part, unwelded copies of a
+// vertex count as one, and caller-given votes decide a patch's side.
+
+#include "test_support.h"
+
+#include <mr/core/orientation.h>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+
+using namespace mr;
+
+namespace {
+
+void flip(TriangleSoup& soup, std::size_t face) { std::swap(soup.triangles[face][1], soup.triangles[face][2]); }
+
+// Every vertex its own copy, as an STL reader that does not weld gives.
+TriangleSoup unwelded(const TriangleSoup& soup) {
+  TriangleSoup out;
+  for (const Triangle& t : soup.triangles) {
+    const Index base = static_cast<Index>(out.positions.size());
+    for (const Index v : t) out.positions.push_back(soup.positions[v]);
+    out.triangles.push_back({base, base + 1, base + 2});
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("orientation: a flipped face of a cube is turned back", "[orientation]") {
+  TriangleSoup soup = test::cube_soup();
+  flip(soup, 3);
+  const OrientationStats stats = orient_coherently(soup);
+  CHECK(stats.patches == 1);
+  CHECK(stats.flipped == 1);
+  CHECK(stats.conflicts == 0);
+  CHECK(soup.triangles == test::cube_soup().triangles);
+  CHECK(test::enclosed_volume(soup) == Approx(1.0));
+}
+
+TEST_CASE("orientation: the larger part of a patch keeps its orientation", "[orientation]") {
+  TriangleSoup soup = test::cube_soup();
+  for (std::size_t f = 0; f < 8; ++f) flip(soup, f);  // 8 of 12 faces inward
+  const OrientationStats stats = orient_coherently(soup);
+  CHECK(stats.flipped == 4);
+  CHECK(test::enclosed_volume(soup) == Approx(-1.0));
+}
+
+TEST_CASE("orientation: an inward shell is a patch of its own and stays inward", "[orientation]") {
+  TriangleSoup soup = test::cube_soup(0.0, 3.0);
+  TriangleSoup cavity = test::cube_soup(1.0, 2.0);
+  for (std::size_t f = 0; f < cavity.triangles.size(); ++f) flip(cavity, f);
+  soup.append(cavity);
+  const TriangleSoup before = soup;
+  const OrientationStats stats = orient_coherently(soup);
+  CHECK(stats.patches == 2);
+  CHECK(stats.flipped == 0);
+  CHECK(soup.triangles == before.triangles);
+}
+
+TEST_CASE("orientation: vertices are matched by position, not by index", "[orientation]") {
+  TriangleSoup soup = unwelded(test::cube_soup());
+  flip(soup, 5);
+  const OrientationStats stats = orient_coherently(soup);
+  CHECK(stats.patches == 1);
+  CHECK(stats.flipped == 1);
+  CHECK(test::enclosed_volume(soup) == Approx(1.0));
+}
+
+TEST_CASE("orientation: non-manifold edges split patches and are left alone", "[orientation]") {
+  TriangleSoup soup = test::non_manifold_soup();
+  const TriangleSoup before = soup;
+  const OrientationStats stats = orient_coherently(soup);
+  CHECK(stats.flipped == 0);
+  CHECK(soup.triangles == before.triangles);
+}
+
+TEST_CASE("orientation: votes decide which side a patch keeps", "[orientation]") {
+  TriangleSoup soup = test::cube_soup();
+  flip(soup, 0);
+  std::vector<double> votes(soup.triangles.size(), -0.1);
+  votes[0] = 5.0;  // only the flipped face is sure of itself
+  const OrientationStats stats = orient_coherently(soup, votes);
+  CHECK(stats.flipped == 11);
+  CHECK(test::enclosed_volume(soup) == Approx(-1.0));
+  CHECK_THROWS(orient_coherently(soup, std::vector<double>(3, 1.0)));
+}
+
+TEST_CASE("orientation: a Moebius strip reports its conflict", "[orientation]") {
+  // A strip of 6 triangles closed with a half twist cannot be oriented.
+  TriangleSoup soup;
+  constexpr int kSegments = 3;
+  for (int i = 0; i < kSegments; ++i) {
+    const double angle = 2.0 * 3.14159265358979 * i / kSegments;
+    const double twist = 0.5 * angle;
+    const Vec3d centre(3.0 * std::cos(angle), 3.0 * std::sin(angle), 0.0);
+    const Vec3d radial(std::cos(angle), std::sin(angle), 0.0);
+    const Vec3d across = std::cos(twist) * radial + std::sin(twist) * Vec3d::UnitZ();
+    soup.positions.push_back(centre + across);
+    soup.positions.push_back(centre - across);
+  }
+  for (Index i = 0; i < kSegments; ++i) {
+    const Index a = 2 * i, b = 2 * i + 1;
+    // The last segment joins top to bottom: the half twist.
+    const bool last = i + 1 == kSegments;
+    const Index c = last ? 1 : 2 * i + 2, d = last ? 0 : 2 * i + 3;
+    soup.triangles.push_back({a, b, c});
+    soup.triangles.push_back({b, d, c});
+  }
+  const OrientationStats stats = orient_coherently(soup);
+  CHECK(stats.patches == 1);
+  CHECK(stats.conflicts >= 1);
+}
