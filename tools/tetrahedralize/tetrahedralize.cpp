@@ -23,6 +23,7 @@ struct ToolOptions {
   std::string stats_path;
   std::string surface_path;
   bool quiet = false;
+  bool verbose = false;
 };
 
 cli::ToolSpec make_spec(ToolOptions& o) {
@@ -75,6 +76,8 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       {"--threads", "-j", "N", "worker threads (default: all)",
        [&](const std::string& v) { t.threads = parse_int("--threads", v, 1, 1024); }},
       {"--quiet", "-q", "", "print nothing on success", [&](const std::string&) { o.quiet = true; }},
+      {"--verbose", "-v", "", "also print each stage as it starts and ends, and each improvement pass",
+       [&](const std::string&) { o.verbose = true; }},
   };
   return spec;
 }
@@ -123,7 +126,7 @@ int tetrahedralize(const std::vector<std::string>& args, std::ostream& out, std:
     tetmesh::Logger logger;
     if (!options.quiet) {
       logger.on_message = [&](tetmesh::LogLevel level, std::string_view text) {
-        if (level != tetmesh::LogLevel::debug) err << text << "\n";
+        if (level != tetmesh::LogLevel::debug || options.verbose) err << text << std::endl;
       };
     }
     const tetmesh::PipelineResult result = tetmesh::tetrahedralize(input, options.pipeline, logger);

@@ -54,6 +54,11 @@ namespace {
 
 constexpr double kInvSqrt3 = 0.57735026918962576451;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Beyond this many steps along its longest edge, a triangle is checked by
+// bisection instead of the lattice: a lattice costs n^2 samples, while
+// bisection stops wherever a piece lies near one input triangle, so its cost
+// follows the input edges the triangle spans (large flat CAD faces).
+constexpr double kLargestLattice = 16.0;
 
 void check_options(const EnvelopeOptions& options) {
   if (!(options.epsilon > 0.0) || !std::isfinite(options.epsilon)) {
@@ -136,7 +141,10 @@ bool SampledEnvelope::is_inside(const Vec3d& a, const Vec3d& b, const Vec3d& c) 
   if (!all_finite({&a, &b, &c})) return false;
   if (pattern_ == SamplingPattern::Lattice) return lattice_triangle(a, b, c);
   if (near_one_input_triangle({a, b, c})) return true;
-  const std::array<Vec3d, 3> v{a, b, c};
+  return adaptive_from_corners({a, b, c});
+}
+
+bool SampledEnvelope::adaptive_from_corners(const std::array<Vec3d, 3>& v) const {
   const double accept = limit_ - longest_edge_length(v) * kInvSqrt3;
   std::array<double, 3> d{};
   for (int i = 0; i < 3; ++i) {
@@ -151,6 +159,7 @@ bool SampledEnvelope::adaptive_segment(const Vec3d& a, const Vec3d& b, double da
   const double length = (b - a).norm();
   if (accepts(std::max(da, db), 0.5 * length)) return true;
   if (length <= step_) return false;
+  if (near_one_input_triangle({a, b})) return true;
   const Vec3d m = 0.5 * (a + b);
   const double dm = sample(m, limit_ - 0.25 * length);
   if (dm == kInfinity) return false;
@@ -166,6 +175,7 @@ bool SampledEnvelope::adaptive_triangle(const std::array<Vec3d, 3>& v,
   const auto [i, length] = longest_edge(v);
   if (accepts(std::max({d[0], d[1], d[2]}), length * kInvSqrt3)) return true;
   if (length <= step_) return false;
+  if (near_one_input_triangle({v[0], v[1], v[2]})) return true;
   const int j = (i + 1) % 3;
   const int k = (i + 2) % 3;
   const std::array<Vec3d, 3> first{v[i], 0.5 * (v[i] + v[j]), v[k]};
@@ -199,6 +209,7 @@ bool SampledEnvelope::lattice_segment(const Vec3d& a, const Vec3d& b) const {
 bool SampledEnvelope::lattice_triangle(const Vec3d& a, const Vec3d& b, const Vec3d& c) const {
   const double length = longest_edge_length({a, b, c});
   const double n = std::max(1.0, std::ceil(length / step_));
+  if (n > kLargestLattice) return adaptive_from_corners({a, b, c});
   const double threshold = limit_ - length / n * kInvSqrt3;
   if (threshold < 0.0) return false;
   const double threshold_sq = threshold * threshold;

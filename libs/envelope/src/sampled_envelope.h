@@ -28,6 +28,7 @@ class SampledEnvelope final : public Envelope {
 
   bool adaptive_segment(const Vec3d& a, const Vec3d& b, double da, double db) const;
   bool adaptive_triangle(const std::array<Vec3d, 3>& v, const std::array<double, 3>& d) const;
+  bool adaptive_from_corners(const std::array<Vec3d, 3>& v) const;
   bool lattice_segment(const Vec3d& a, const Vec3d& b) const;
   bool lattice_triangle(const Vec3d& a, const Vec3d& b, const Vec3d& c) const;
 

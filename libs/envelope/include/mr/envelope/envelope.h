@@ -29,11 +29,15 @@ enum class SamplingPattern {
   /// The paper's lattice: the triangle cut into n^2 copies similar to it with
   /// edges no longer than the sampling step, every lattice vertex a sample.
   /// The default: fastest on triangles of ordinary shape (see bench/spatial_bench).
+  /// Triangles more than 16 steps long are checked as with Adaptive.
   Lattice,
   /// Longest-edge bisection, stopping early wherever the samples found so far
   /// prove a piece inside; rejects only pieces whose edges are all no longer
   /// than the sampling step. Cost grows with the length, not the area, of
-  /// long thin triangles, where the lattice is quadratic.
+  /// long thin triangles, where the lattice is quadratic; and a piece whose
+  /// corners all lie near one input triangle is accepted at once (the
+  /// distance to a triangle is convex), so large faces over a flat input
+  /// cost about the length of the input edges they span.
   Adaptive,
 };
 
