@@ -112,6 +112,23 @@ TEST_CASE("tetrahedralize: the full pipeline with improvement keeps the cube", "
   CHECK(check::one_sided_distance(result.tracked_surface, cube).max <= result.parameters.epsilon);
 }
 
+TEST_CASE("tetrahedralize: improvement clears slivers along lines where parts cross", "[tetrahedralize]") {
+  // Two cubes crossing at a slant: their faces meet along lines that are not
+  // on any lattice plane, so the cut points there are close together. The
+  // collapses must slide along those lines rather than leave the slivers.
+  TriangleSoup second = test::cube_soup();
+  const Eigen::AngleAxisd turn(0.3, Vec3d(1, 2, 3).normalized());
+  for (Vec3d& p : second.positions) p = turn * (p - Vec3d(0.5, 0.5, 0.5)) + Vec3d(0.9, 0.8, 0.7);
+  const TriangleSoup soup = merged(test::cube_soup(), second);
+  const tetmesh::PipelineResult result = tetmesh::tetrahedralize(soup, {});
+  const check::TetReport report = check::check_tets(result.mesh);
+  CHECK(report.valid());
+  CHECK(report.boundary.watertight());
+  CHECK(report.min_dihedral_deg > 5.0);
+  CHECK(report.max_amips < 20.0);
+  CHECK(check::one_sided_distance(result.tracked_surface, soup).max <= result.parameters.epsilon);
+}
+
 TEST_CASE("tetrahedralize: --no-filter labels the regions the input separates", "[tetrahedralize]") {
   tetmesh::PipelineOptions options;
   options.filter = false;

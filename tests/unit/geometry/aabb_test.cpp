@@ -120,6 +120,36 @@ TEST_CASE("AABB tree agrees with brute force on random soups", "[aabb]") {
   }
 }
 
+TEST_CASE("AABB tree: one triangle near all points agrees with brute force", "[aabb]") {
+  std::mt19937_64 rng(7);
+  const mr::TriangleSoup soup = random_soup(rng, 300);
+  const AabbTree tree(soup);
+  int near_count = 0;
+  for (int q = 0; q < 600; ++q) {
+    // Near a random triangle, so that both answers occur.
+    const auto& host = soup.triangles[rng() % soup.triangles.size()];
+    const Vec3d on_host = (soup.positions[host[0]] + soup.positions[host[1]] + soup.positions[host[2]]) / 3.0;
+    const Vec3d a = on_host + 0.01 * random_point(rng, -1.0, 1.0);
+    const Vec3d b = a + 0.03 * random_point(rng, -1.0, 1.0);
+    const Vec3d c = a + 0.03 * random_point(rng, -1.0, 1.0);
+    const double r_sq = 0.02 * 0.02;
+    const std::array<Vec3d, 3> points{a, b, c};
+    bool expected = false;
+    for (const auto& t : soup.triangles) {
+      const auto near = [&](const Vec3d& p) {
+        return closest_on_triangle(p, soup.positions[t[0]], soup.positions[t[1]], soup.positions[t[2]])
+                   .squared_distance <= r_sq;
+      };
+      expected = expected || (near(a) && near(b) && near(c));
+    }
+    near_count += expected;
+    CHECK(tree.one_triangle_near_all(points, r_sq) == expected);
+    CHECK(tree.one_triangle_near_all(std::span(points.data(), 1), r_sq) == tree.any_within(a, 0.02));
+  }
+  CHECK(near_count > 20);  // both answers occur
+  CHECK(near_count < 580);
+}
+
 TEST_CASE("AABB tree: queries on the surface and far away", "[aabb]") {
   const mr::TriangleSoup cube = mr::test::cube_soup();
   const AabbTree tree(cube);

@@ -132,6 +132,42 @@ TEST_CASE("envelope: a triangle with all corners inside but its middle outside",
   }
 }
 
+TEST_CASE("envelope: a large triangle over a finely tessellated plane", "[envelope]") {
+  // 200 x 200 cells of the unit square, each two triangles, and a copy with
+  // a 0.1 x 0.1 hole: a triangle spanning the square is inside the first,
+  // and not the second, though its corners are near the plane in both.
+  constexpr int kCells = 200;
+  const auto grid = [&](bool with_hole) {
+    mr::TriangleSoup soup;
+    for (int i = 0; i <= kCells; ++i) {
+      for (int j = 0; j <= kCells; ++j) soup.positions.emplace_back(double(i) / kCells, double(j) / kCells, 0.0);
+    }
+    const auto id = [&](int i, int j) { return static_cast<mr::Index>(i * (kCells + 1) + j); };
+    for (int i = 0; i < kCells; ++i) {
+      for (int j = 0; j < kCells; ++j) {
+        if (with_hole && i >= 80 && i < 100 && j >= 40 && j < 60) continue;
+        soup.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+        soup.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+      }
+    }
+    return soup;
+  };
+  const Vec3d a(0.01, 0.01, 0.0005), b(0.99, 0.02, -0.0005), c(0.3, 0.98, 0.0);
+  for (const auto pattern : {SamplingPattern::Adaptive, SamplingPattern::Lattice}) {
+    EnvelopeOptions options;
+    options.epsilon = 1e-3;
+    options.pattern = pattern;
+    CHECK(make_envelope(grid(false), options)->is_inside(a, b, c));
+    const auto holed = make_envelope(grid(true), options);
+    REQUIRE(holed->is_inside(a));
+    REQUIRE(holed->is_inside(b));
+    REQUIRE(holed->is_inside(c));
+    CHECK_FALSE(holed->is_inside(a, b, c));
+    CHECK(holed->is_inside(a, c));  // the edge misses the hole
+    CHECK_FALSE(holed->is_inside(Vec3d(0.45, 0.1, 0), Vec3d(0.45, 0.9, 0)));  // crosses it
+  }
+}
+
 TEST_CASE("envelope: long thin triangles and triangles over a corner", "[envelope]") {
   const mr::TriangleSoup cube = mr::test::cube_soup();
   for (const auto pattern : {SamplingPattern::Adaptive, SamplingPattern::Lattice}) {
