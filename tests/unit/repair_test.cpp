@@ -1,6 +1,7 @@
 // The repair stage of meshrepair on hand-built tet sets (independent of the
 // tetrahedralization), verified with mr::check; and meshrepair end to end.
 
+#include "mesh_generators.h"
 #include "test_support.h"
 
 #include <mr/check/distance.h>
@@ -334,6 +335,39 @@ TEST_CASE("meshrepair makes broken inputs watertight", "[repair][e2e]") {
       REQUIRE(j["stages"].size() >= 4);
     }
   }
+}
+
+TEST_CASE("meshrepair simplifies its input first unless told not to", "[repair][e2e]") {
+  const io::Registry registry = io::make_default_registry();
+  test::TempDir dir("meshrepair_simplify");
+  // A flat square plate, densely tessellated on its large faces.
+  const TriangleSoup plate = test::torus_grid(40, 4, [](int i, int j) {
+    const double x = i < 10 ? i / 10.0 : i < 20 ? 1.0 : i < 30 ? (30 - i) / 10.0 : 0.0;
+    const double y = i < 10 ? 0.0 : i < 20 ? (i - 10) / 10.0 : i < 30 ? 1.0 : (40 - i) / 10.0;
+    return Vec3d(x * (j == 1 || j == 2 ? 1.0 : 0.9) + (j == 1 || j == 2 ? 0.0 : 0.05),
+                 y * (j == 1 || j == 2 ? 1.0 : 0.9) + (j == 1 || j == 2 ? 0.0 : 0.05), j < 2 ? 0.0 : 0.2);
+  });
+  const auto input = dir / "plate.obj";
+  io::write_surface(registry, plate, input);
+  const auto simplify_faces = [&](const std::vector<std::string>& extra) {
+    const auto out = dir / "out.stl", stats = dir / "stats.json";
+    std::vector<std::string> args{input.string(), out.string(), "--stats", stats.string(), "-q"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const test::ToolRun run = run_meshrepair(args);
+    CAPTURE(run.err);
+    REQUIRE(run.exit_code == 0);
+    REQUIRE(check::check_surface(io::read_surface(registry, out)).watertight());
+    std::ifstream stats_file(stats);
+    const nlohmann::json j = nlohmann::json::parse(stats_file);
+    for (const nlohmann::json& stage : j["stages"]) {
+      if (stage["name"] == "simplify") return stage["counts"]["faces"].get<std::int64_t>();
+    }
+    FAIL("no simplify stage in the stats");
+    return std::int64_t{0};
+  };
+  const auto faces = static_cast<std::int64_t>(plate.triangles.size());
+  CHECK(simplify_faces({"--skip-simplify"}) == faces);
+  CHECK(simplify_faces({}) < faces / 2);
 }
 
 TEST_CASE("meshrepair GLB output passes the Khronos validator", "[repair][e2e]") {

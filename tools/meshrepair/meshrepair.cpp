@@ -39,6 +39,8 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        [&](const std::string& v) { t.epsilon_rel = parse_double("--epsilon", v); }},
       {"--epsilon-abs", "", "EPS", "absolute envelope radius (overrides --epsilon)",
        [&](const std::string& v) { t.epsilon_abs = parse_double("--epsilon-abs", v); }},
+      {"--skip-simplify", "", "", "insert the input as it is, without simplifying it inside the envelope first",
+       [&](const std::string&) { t.skip_simplify = true; }},
       {"--no-cleanup", "", "", "keep the peeled surface as it is (no collapses or flips)",
        [&](const std::string&) { o.cleanup = false; }},
       {"--stats", "", "FILE",

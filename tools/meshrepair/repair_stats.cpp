@@ -67,8 +67,11 @@ nlohmann::json repair_figures(const repair::RepairResult& r) {
 nlohmann::json stage_seconds(const RepairRun& run) {
   nlohmann::json stages = nlohmann::json::array();
   stages.push_back({{"name", "read"}, {"seconds", run.seconds_read}});
-  for (const tetmesh::StageStats& s : run.pipeline.stats.stages)
-    stages.push_back({{"name", s.name}, {"seconds", s.seconds}});
+  for (const tetmesh::StageStats& s : run.pipeline.stats.stages) {
+    nlohmann::json stage = {{"name", s.name}, {"seconds", s.seconds}};
+    for (const auto& [key, value] : s.counts) stage["counts"][key] = value;
+    stages.push_back(std::move(stage));
+  }
   for (const repair::StageTime& s : run.repair.stages) stages.push_back({{"name", s.name}, {"seconds", s.seconds}});
   stages.push_back({{"name", "write"}, {"seconds", run.seconds_write}});
   return stages;
