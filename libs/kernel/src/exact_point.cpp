@@ -1,5 +1,6 @@
 #include <mr/kernel/exact_point.h>
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -9,6 +10,43 @@ namespace mr {
 namespace {
 
 bool has_even_mantissa(double d) { return (std::bit_cast<std::uint64_t>(d) & 1u) == 0; }
+
+// A point as integers (x, y, z) / w with w > 0. The orientation predicates
+// run on these: every mpq operation reduces its result by a gcd, which on
+// the long numbers of nested cut points cost most of the insertion time;
+// integer products need no reduction, and the signs are the same since
+// every denominator is positive.
+struct Homogeneous {
+  mpz_class x, y, z, w;
+};
+
+Homogeneous homogeneous(const ExactPoint3& p) {
+  const mpz_class& dx = p.x.get_den();
+  const mpz_class& dy = p.y.get_den();
+  const mpz_class& dz = p.z.get_den();
+  Homogeneous h;
+  if (dx == dy && dy == dz) {
+    h.w = dx;
+  } else {
+    mpz_lcm(h.w.get_mpz_t(), dx.get_mpz_t(), dy.get_mpz_t());
+    mpz_lcm(h.w.get_mpz_t(), h.w.get_mpz_t(), dz.get_mpz_t());
+  }
+  const auto scaled = [&](const mpq_class& q) {
+    if (q.get_den() == h.w) return mpz_class(q.get_num());
+    mpz_class factor;
+    mpz_divexact(factor.get_mpz_t(), h.w.get_mpz_t(), q.get_den().get_mpz_t());
+    return mpz_class(q.get_num() * factor);
+  };
+  h.x = scaled(p.x);
+  h.y = scaled(p.y);
+  h.z = scaled(p.z);
+  return h;
+}
+
+// q - p, times the positive p.w * q.w.
+std::array<mpz_class, 3> scaled_difference(const Homogeneous& q, const Homogeneous& p) {
+  return {q.x * p.w - p.x * q.w, q.y * p.w - p.y * q.w, q.z * p.w - p.z * q.w};
+}
 
 mpq_class determinant3(const mpq_class& ux, const mpq_class& uy, const mpq_class& uz,
                        const mpq_class& vx, const mpq_class& vy, const mpq_class& vz,
@@ -45,9 +83,12 @@ bool is_representable(const ExactPoint3& p) {
 
 int orient3d(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c,
              const ExactPoint3& d) {
-  const mpq_class det = determinant3(b.x - a.x, b.y - a.y, b.z - a.z,  //
-                                     c.x - a.x, c.y - a.y, c.z - a.z,  //
-                                     d.x - a.x, d.y - a.y, d.z - a.z);
+  const Homogeneous ha = homogeneous(a);
+  const auto u = scaled_difference(homogeneous(b), ha);
+  const auto v = scaled_difference(homogeneous(c), ha);
+  const auto w = scaled_difference(homogeneous(d), ha);
+  const mpz_class det = u[0] * (v[1] * w[2] - v[2] * w[1]) + u[1] * (v[2] * w[0] - v[0] * w[2]) +
+                        u[2] * (v[0] * w[1] - v[1] * w[0]);
   return sgn(det);
 }
 
@@ -55,7 +96,10 @@ int orient2d_projected(const ExactPoint3& a, const ExactPoint3& b, const ExactPo
                        int axis) {
   const int i = axis == 0 ? 1 : 0;
   const int j = axis == 2 ? 1 : 2;
-  const mpq_class det = (b[i] - a[i]) * (c[j] - a[j]) - (b[j] - a[j]) * (c[i] - a[i]);
+  const Homogeneous ha = homogeneous(a);
+  const auto u = scaled_difference(homogeneous(b), ha);
+  const auto v = scaled_difference(homogeneous(c), ha);
+  const mpz_class det = u[i] * v[j] - u[j] * v[i];
   return sgn(det);
 }
 

@@ -75,6 +75,62 @@ TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const
   return surface;
 }
 
+bool is_cycle(const TriangleSoup& surface) {
+  // +1 for each use of edge (lo, hi) from lo to hi, -1 the other way.
+  std::vector<std::pair<std::array<Index, 2>, int>> uses;
+  uses.reserve(3 * surface.triangles.size());
+  for (const Triangle& t : surface.triangles) {
+    for (int i = 0; i < 3; ++i) {
+      const Index a = t[i], b = t[(i + 1) % 3];
+      uses.push_back({{std::min(a, b), std::max(a, b)}, a < b ? 1 : -1});
+    }
+  }
+  std::sort(uses.begin(), uses.end());
+  for (std::size_t i = 0; i < uses.size();) {
+    int sum = 0;
+    std::size_t j = i;
+    for (; j < uses.size() && uses[j].first == uses[i].first; ++j) sum += uses[j].second;
+    if (sum != 0) return false;
+    i = j;
+  }
+  return true;
+}
+
+TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tree, WindingRule rule) {
+  const std::vector<std::int32_t> labels = region_labels(mesh);
+  const std::int32_t regions = labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end());
+  std::vector<Index> largest(static_cast<std::size_t>(regions) + 1, kNoTet);
+  std::vector<double> largest_volume(largest.size(), -1.0);
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    const Tet& c = mesh.tet(t);
+    const Vec3d& a = mesh.position(c[0]).approx;
+    const double volume = (mesh.position(c[1]).approx - a)
+                              .cross(mesh.position(c[2]).approx - a)
+                              .dot(mesh.position(c[3]).approx - a);
+    if (volume > largest_volume[labels[t]]) {
+      largest_volume[labels[t]] = volume;
+      largest[labels[t]] = t;
+    }
+  }
+  std::vector<Vec3d> queries;
+  for (std::int32_t r = 1; r <= regions; ++r) queries.push_back(tet_centroid(mesh, largest[r]));
+  const std::vector<double> values = tree.evaluate(queries);
+  TetClassification result;
+  result.winding.assign(mesh.tet_slots(), 0.0);
+  result.keep.assign(mesh.tet_slots(), 0);
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    const double w = values[labels[t] - 1];
+    result.winding[t] = w;
+    if (is_inside(w, rule)) {
+      result.keep[t] = 1;
+      ++result.kept;
+    }
+  }
+  return result;
+}
+
 std::size_t count_non_positive_tets(const TetMesh& mesh) {
   return tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, mesh.tets.size()), std::size_t{0},

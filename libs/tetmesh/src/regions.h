@@ -5,6 +5,7 @@
 #include <mr/core/tet_mesh.h>
 #include <mr/core/triangle_soup.h>
 #include <mr/tetmesh/mesh.h>
+#include <mr/tetmesh/winding_filter.h>
 
 #include <span>
 #include <vector>
@@ -21,6 +22,16 @@ std::vector<std::int32_t> region_labels(const Mesh& mesh);
 /// smallest id, with its own vertices (doubles: call after rounding).
 TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const TriangleSoup& input);
 
+/// Whether every edge of `surface` (vertices compared by index) is run along
+/// as often one way as the other. The surface is then a closed cycle: its
+/// winding number is an integer, constant on each region it bounds.
+bool is_cycle(const TriangleSoup& surface);
+/// The winding-number filter decided once per region of region_labels, at
+/// the centroid of its largest tet (ties: the smallest slot). Equal to
+/// classify_tets when `tree` is built on a tracked surface that is a cycle,
+/// and far cheaper: most tets lie near the surface, where each query
+/// descends to the triangles.
+TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tree, WindingRule rule);
 /// The number of tets of `mesh` that are not strictly positively oriented
 /// on their double coordinates (exact orient3d; parallel).
 std::size_t count_non_positive_tets(const TetMesh& mesh);

@@ -173,10 +173,17 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, co
       // centroid fell between the two surfaces, and their far faces left
       // the envelope.
       const TriangleSoup tracked = detail::tracked_surface(mesh, {}, surface);
+      const WindingNumberTree tree(tracked);
+      const WindingRule rule = options.tetrahedralize.winding_rule;
+      // A closed tracked surface (as most inputs give) needs one query per
+      // region; an open one has a winding number that varies inside a
+      // region, so every tet is queried.
+      const bool closed = detail::is_cycle(tracked);
       const TetClassification classes =
-          classify_tets(mesh, WindingNumberTree(tracked), options.tetrahedralize.winding_rule);
+          closed ? detail::classify_regions(mesh, tree, rule) : classify_tets(mesh, tree, rule);
       keep = classes.keep;
       count(timer, "kept_tets", classes.kept);
+      count(timer, "closed_surface", closed ? 1 : 0);
     }
   }
   {

@@ -4,8 +4,10 @@
 
 #include <mr/core/errors.h>
 #include <mr/kernel/constructions.h>
+#include <mr/kernel/point_box.h>
 
 #include <algorithm>
+#include <optional>
 
 namespace mr::tetmesh::detail {
 namespace {
@@ -17,6 +19,62 @@ std::vector<std::uint32_t> with_id(std::vector<std::uint32_t> ids, std::uint32_t
     ids.insert(std::upper_bound(ids.begin(), ids.end(), id), id);
   }
   return ids;
+}
+
+// Whether the convex polygon `polygon` (on P, any order) overlaps the
+// interior of `triangle`, by separating lines: T's edge lines, and the
+// polygon's own edges (a pair of corners with all other corners on one
+// side). side(p, q, x) is orient2d of the projections, or kUncertainSign
+// from a filter; nullopt when an uncertain sign would decide.
+template <class Point, class Side>
+std::optional<bool> polygon_overlaps_triangle(std::span<const Point> polygon, const std::array<Point, 3>& triangle,
+                                              int orientation, Side side) {
+  for (int line = 0; line < 3; ++line) {
+    const Point& p = triangle[line];
+    const Point& q = triangle[(line + 1) % 3];
+    bool uncertain = false;
+    bool some_inside = false;
+    for (const Point& x : polygon) {
+      const int s = side(p, q, x);
+      if (s == kUncertainSign) {
+        uncertain = true;
+      } else if (orientation * s > 0) {
+        some_inside = true;
+        break;
+      }
+    }
+    if (some_inside) continue;
+    if (uncertain) return std::nullopt;
+    return false;  // every corner on or outside this edge line
+  }
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    for (std::size_t j = i + 1; j < polygon.size(); ++j) {
+      int polygon_side = 0;
+      bool is_edge = true;
+      for (std::size_t k = 0; k < polygon.size() && is_edge; ++k) {
+        if (k == i || k == j) continue;
+        const int s = side(polygon[i], polygon[j], polygon[k]);
+        if (s == kUncertainSign) return std::nullopt;
+        if (s != 0 && polygon_side != 0 && s != polygon_side) is_edge = false;
+        if (s != 0) polygon_side = s;
+      }
+      if (!is_edge || polygon_side == 0) continue;
+      bool separated = true;
+      bool uncertain = false;
+      for (const Point& corner : triangle) {
+        const int s = side(polygon[i], polygon[j], corner);
+        if (s == kUncertainSign) {
+          uncertain = true;
+        } else if (s * polygon_side > 0) {
+          separated = false;
+        }
+      }
+      if (!separated) continue;
+      if (uncertain) return std::nullopt;
+      return false;
+    }
+  }
+  return true;
 }
 
 }  // namespace
@@ -170,8 +228,9 @@ bool TriangleInserter::is_cut(Index t) {
   }
   if (!above || !below) return false;
   if (section_outside_a_line(t)) return false;
-  std::vector<HybridPoint> section;
   const Tet& c = mesh_.tet(t);
+  if (const std::optional<bool> overlaps = section_overlaps_filtered(c)) return *overlaps;
+  std::vector<HybridPoint> section;
   for (int i = 0; i < 4; ++i) {
     if (plane_sign(c[i]) == 0) section.push_back(mesh_.position(c[i]));
   }
@@ -212,39 +271,46 @@ const HybridPoint& TriangleInserter::plane_point(Index u, Index v) {
   return it->second;
 }
 
-// Whether the convex polygon with corners `points` (on P, any order)
-// overlaps T's interior, by separating lines: T's edge lines, and the
-// polygon's own edges (a pair of corners with all other corners on one side).
-bool TriangleInserter::overlaps_triangle(std::span<const HybridPoint> points) {
-  const auto side = [&](const HybridPoint& p, const HybridPoint& q, const HybridPoint& x) {
-    return orient2d_projected(p, q, x, axis_);
-  };
-  for (int line = 0; line < 3; ++line) {
-    const HybridPoint& p = mesh_.position(corners_[line]);
-    const HybridPoint& q = mesh_.position(corners_[(line + 1) % 3]);
-    const bool all_outside = std::all_of(points.begin(), points.end(),
-                                         [&](const HybridPoint& x) { return orientation_ * side(p, q, x) <= 0; });
-    if (all_outside) return false;
+// The section-overlap test of is_cut on boxes around the section's corners
+// (interval arithmetic): most tets are decided without constructing their
+// cut points exactly, which used to take most of the insertion time.
+std::optional<bool> TriangleInserter::section_overlaps_filtered(const Tet& c) {
+  std::array<PointBox, 4> section;  // a plane meets a tet in at most 4 points
+  std::size_t count = 0;
+  for (int i = 0; i < 4; ++i) {
+    if (plane_sign(c[i]) == 0) section[count++] = box_of(mesh_.position(c[i]));
   }
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    for (std::size_t j = i + 1; j < points.size(); ++j) {
-      int polygon_side = 0;
-      bool is_edge = true;
-      for (std::size_t k = 0; k < points.size() && is_edge; ++k) {
-        if (k == i || k == j) continue;
-        const int s = side(points[i], points[j], points[k]);
-        if (s != 0 && polygon_side != 0 && s != polygon_side) is_edge = false;
-        if (s != 0) polygon_side = s;
-      }
-      if (!is_edge || polygon_side == 0) continue;
-      bool separated = true;
-      for (Index corner : corners_) {
-        if (side(points[i], points[j], mesh_.position(corner)) * polygon_side > 0) separated = false;
-      }
-      if (separated) return false;
+  for (const auto& [i, j] : kTetEdges) {
+    if (plane_sign(c[i]) * plane_sign(c[j]) >= 0) continue;
+    if (count == section.size()) return std::nullopt;
+    const auto known = plane_points_.find(segment_key(c[i], c[j]));
+    if (known != plane_points_.end()) {
+      section[count++] = box_of(known->second);
+      continue;
     }
+    const std::optional<PointBox> box =
+        box_of_segment_plane(mesh_.position(c[i]), mesh_.position(c[j]), mesh_.position(corners_[0]),
+                             mesh_.position(corners_[1]), mesh_.position(corners_[2]));
+    if (!box) return std::nullopt;
+    section[count++] = *box;
   }
-  return true;
+  const std::array<PointBox, 3> triangle{box_of(mesh_.position(corners_[0])), box_of(mesh_.position(corners_[1])),
+                                         box_of(mesh_.position(corners_[2]))};
+  return polygon_overlaps_triangle(std::span<const PointBox>(section.data(), count), triangle, orientation_,
+                                   [&](const PointBox& p, const PointBox& q, const PointBox& x) {
+                                     return orient2d_projected(p, q, x, axis_);
+                                   });
+}
+
+// Whether the convex polygon with corners `points` (on P, any order)
+// overlaps T's interior (exact).
+bool TriangleInserter::overlaps_triangle(std::span<const HybridPoint> points) {
+  const std::array<HybridPoint, 3> triangle{mesh_.position(corners_[0]), mesh_.position(corners_[1]),
+                                            mesh_.position(corners_[2])};
+  return *polygon_overlaps_triangle(points, triangle, orientation_,
+                                    [&](const HybridPoint& p, const HybridPoint& q, const HybridPoint& x) {
+                                      return orient2d_projected(p, q, x, axis_);
+                                    });
 }
 
 // ------------------------------------------------------------------ cutting

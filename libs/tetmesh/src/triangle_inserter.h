@@ -26,6 +26,7 @@
 #include <deque>
 #include <limits>
 #include <map>
+#include <optional>
 #include <span>
 #include <unordered_map>
 #include <unordered_set>
@@ -79,6 +80,7 @@ class TriangleInserter {
   bool section_outside_a_line(Index t);
   const HybridPoint& plane_point(Index u, Index v);
   bool overlaps_triangle(std::span<const HybridPoint> points);
+  std::optional<bool> section_overlaps_filtered(const Tet& c);
 
   Index split_point(Index u, Index v, int line, Index seed_tet);
   void register_cut_points();

@@ -2,6 +2,7 @@
 
 #include <mr/core/errors.h>
 #include <mr/kernel/constructions.h>
+#include <mr/kernel/point_box.h>
 #include <mr/kernel/rounding.h>
 
 #include <catch2/catch.hpp>
@@ -228,4 +229,81 @@ TEST_CASE("intersection tests on rational points match the same configuration in
     ++compared;
   }
   CHECK(compared > 1000);
+}
+
+TEST_CASE("point boxes: a segment-plane box contains the exact point, box signs are exact", "[kernel]") {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto random_point = [&] { return Vec3d(unit(rng), unit(rng), unit(rng)); };
+  const auto inside = [](const mpq_class& x, double lo, double hi) { return mpq_class(lo) <= x && x <= mpq_class(hi); };
+  int certain = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const HybridPoint p = random_point(), q = random_point(), r = random_point();
+    // Crossing segments; every fourth nearly in the plane, where the filter may give up.
+    HybridPoint a = random_point(), b = random_point();
+    if (orient3d(p, q, r, a) * orient3d(p, q, r, b) >= 0) continue;
+    if (trial % 4 == 0) {
+      a = HybridPoint::from_exact(intersect_segment_plane(a, b, p, q, r));
+      a = HybridPoint(a.approx + 1e-15 * random_point());
+      if (orient3d(p, q, r, a) * orient3d(p, q, r, b) >= 0) continue;
+    }
+    const ExactPoint3 exact = intersect_segment_plane(a, b, p, q, r);
+    const std::optional<PointBox> box = box_of_segment_plane(a, b, p, q, r);
+    if (!box) continue;
+    for (int k = 0; k < 3; ++k) REQUIRE(inside(exact[k], box->lo[k], box->hi[k]));
+    // A box sign, when certain, is the exact sign for the point it contains.
+    const HybridPoint cut = HybridPoint::from_exact(exact);
+    const HybridPoint u = random_point(), v = random_point();
+    for (int axis = 0; axis < 3; ++axis) {
+      const int sign = orient2d_projected(box_of(u), box_of(v), *box, axis);
+      if (sign == kUncertainSign) continue;
+      ++certain;
+      REQUIRE(sign == orient2d_projected(u, v, cut, axis));
+    }
+  }
+  CHECK(certain > 1000);
+  // A box of a rational point holds it; a double's box is the point.
+  const HybridPoint third = HybridPoint::from_exact(ExactPoint3(mpq_class(1, 3), mpq_class(2, 3), mpq_class(-1, 3)));
+  const PointBox box = box_of(third);
+  for (int k = 0; k < 3; ++k) CHECK(inside((*third.exact)[k], box.lo[k], box.hi[k]));
+  CHECK(box_of(HybridPoint(Vec3d(1, 2, 3))).lo == Vec3d(1, 2, 3));
+}
+
+TEST_CASE("exact orientation of rational points matches the rational determinant", "[kernel]") {
+  // Points with unrelated denominators per coordinate, and coplanar and
+  // collinear ones built by construction: the integer (homogeneous)
+  // evaluation must give the sign of the plain mpq determinant.
+  std::mt19937_64 rng(5);
+  std::uniform_int_distribution<int> small(-50, 50), positive(1, 97);
+  const auto random_rational = [&] { return mpq_class(small(rng), positive(rng)); };
+  const auto random_point = [&] { return ExactPoint3(random_rational(), random_rational(), random_rational()); };
+  const auto reference3 = [](const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c, const ExactPoint3& d) {
+    const mpq_class ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = c.x - a.x, vy = c.y - a.y,
+                    vz = c.z - a.z, wx = d.x - a.x, wy = d.y - a.y, wz = d.z - a.z;
+    return sgn(mpq_class(ux * (vy * wz - vz * wy) + uy * (vz * wx - vx * wz) + uz * (vx * wy - vy * wx)));
+  };
+  int zeros = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const ExactPoint3 a = random_point(), b = random_point(), c = random_point();
+    ExactPoint3 d = random_point();
+    if (trial % 3 == 0) {  // on the plane of a, b, c
+      const mpq_class s = random_rational(), t = random_rational();
+      d = ExactPoint3(a.x + s * (b.x - a.x) + t * (c.x - a.x), a.y + s * (b.y - a.y) + t * (c.y - a.y),
+                      a.z + s * (b.z - a.z) + t * (c.z - a.z));
+    }
+    const int expected = reference3(a, b, c, d);
+    zeros += expected == 0;
+    REQUIRE(orient3d(a, b, c, d) == expected);
+    REQUIRE(orient3d(b, a, c, d) == -expected);
+    const ExactPoint3 on_line(a.x + mpq_class(1, 3) * (b.x - a.x), a.y + mpq_class(1, 3) * (b.y - a.y),
+                              a.z + mpq_class(1, 3) * (b.z - a.z));
+    for (int axis = 0; axis < 3; ++axis) {
+      const int i = axis == 0 ? 1 : 0;
+      const int j = axis == 2 ? 1 : 2;
+      const int expected2 = sgn(mpq_class((b[i] - a[i]) * (d[j] - a[j]) - (b[j] - a[j]) * (d[i] - a[i])));
+      REQUIRE(orient2d_projected(a, b, d, axis) == expected2);
+      REQUIRE(orient2d_projected(a, b, on_line, axis) == 0);
+    }
+  }
+  CHECK(zeros >= 900);
 }
