@@ -34,37 +34,91 @@ std::vector<std::int32_t> region_labels(const Mesh& mesh) {
   return labels;
 }
 
-TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const TriangleSoup& input) {
+namespace {
+
+// Unit normal of input triangle `id`.
+Vec3d input_normal(const TriangleSoup& input, std::uint32_t id) {
+  const Triangle& t = input.triangles[id];
+  return (input.positions[t[1]] - input.positions[t[0]]).cross(input.positions[t[2]] - input.positions[t[0]]).normalized();
+}
+
+// +1 when face k of tet t, oriented out of t, runs like input triangle id,
+// -1 when against it. Decided by the exact side of the tet's opposite corner
+// with respect to the triangle's plane (the face's own normal is noise for
+// the tiny faces rounding leaves between nearly coincident cut points);
+// from the neighbour's opposite corner when that one is on the plane; from
+// the normals when both are.
+int face_direction(const Mesh& mesh, Index t, int k, const TriangleSoup& input, std::uint32_t id,
+                   const Vec3d& face_normal) {
+  const Triangle& tri = input.triangles[id];
+  const auto side = [&](Index v) {
+    return orient3d(HybridPoint(input.positions[tri[0]]), HybridPoint(input.positions[tri[1]]),
+                    HybridPoint(input.positions[tri[2]]), mesh.position(v));
+  };
+  // Corner below the plane: the outward normal across the face points up.
+  const int own = side(mesh.tet(t)[k]);
+  if (own != 0) return -own;
+  const Index n = mesh.neighbour(t, k);
+  if (n != kNoTet) {
+    for (int j = 0; j < 4; ++j) {
+      const Index v = mesh.tet(n)[j];
+      const auto corners = mesh.face_vertices(t, k);
+      if (std::find(corners.begin(), corners.end(), v) != corners.end()) continue;
+      const int other = side(v);
+      if (other != 0) return other;
+    }
+  }
+  return face_normal.dot(input_normal(input, id)) < 0 ? -1 : 1;
+}
+
+}  // namespace
+
+TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const TriangleSoup& input,
+                             Multiplicity multiplicity) {
   const auto kept = [&](Index t) { return t != kNoTet && mesh.tet_alive(t) && (keep.empty() || keep[t] != 0); };
   TriangleSoup surface;
   std::vector<double> votes;
   std::vector<Index> used(mesh.vertex_slots(), kNoVertex);
+  const auto emit = [&](const std::array<Index, 3>& f, double vote) {
+    Triangle out;
+    for (int i = 0; i < 3; ++i) {
+      if (used[f[i]] == kNoVertex) {
+        used[f[i]] = static_cast<Index>(surface.positions.size());
+        surface.positions.push_back(mesh.position(f[i]).approx);
+      }
+      out[i] = used[f[i]];
+    }
+    surface.triangles.push_back(out);
+    votes.push_back(vote);
+  };
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
     if (!kept(t)) continue;
     for (int k = 0; k < 4; ++k) {
       const Index n = mesh.neighbour(t, k);
       if (!mesh.is_surface_face(t, k) || (kept(n) && n < t)) continue;
       std::array<Index, 3> f = mesh.face_vertices(t, k);
-      const Triangle& source = input.triangles[mesh.surface_ids(t, k).front()];
-      const Vec3d input_normal = (input.positions[source[1]] - input.positions[source[0]])
-                                     .cross(input.positions[source[2]] - input.positions[source[0]])
-                                     .normalized();
       const Vec3d& a = mesh.position(f[0]).approx;
-      double agreement = (mesh.position(f[1]).approx - a).cross(mesh.position(f[2]).approx - a).dot(input_normal);
-      if (agreement < 0) {
-        std::swap(f[1], f[2]);
-        agreement = -agreement;
+      const Vec3d normal = (mesh.position(f[1]).approx - a).cross(mesh.position(f[2]).approx - a);
+      const auto ids = mesh.surface_ids(t, k);
+      if (multiplicity == Multiplicity::once) {
+        const int direction = face_direction(mesh, t, k, input, ids.front(), normal);
+        if (direction < 0) std::swap(f[1], f[2]);
+        emit(f, std::max(0.0, direction * normal.dot(input_normal(input, ids.front()))));
+        continue;
       }
-      votes.push_back(agreement);
-      Triangle out;
-      for (int i = 0; i < 3; ++i) {
-        if (used[f[i]] == kNoVertex) {
-          used[f[i]] = static_cast<Index>(surface.positions.size());
-          surface.positions.push_back(mesh.position(f[i]).approx);
-        }
-        out[i] = used[f[i]];
+      // As a chain: each input triangle on the face counts +1 or -1 by how
+      // the face runs relative to it, so coincident faces of two parts that
+      // touch (opposite orientations) cancel, and duplicates add up.
+      int net = 0;
+      double agreement = 0.0;
+      for (const std::uint32_t id : ids) {
+        const int direction = face_direction(mesh, t, k, input, id, normal);
+        net += direction;
+        agreement += std::max(0.0, direction * normal.dot(input_normal(input, id)));
       }
-      surface.triangles.push_back(out);
+      if (net == 0) continue;
+      if (net < 0) std::swap(f[1], f[2]);
+      for (int copy = 0; copy < std::abs(net); ++copy) emit(f, agreement / static_cast<double>(ids.size()));
     }
   }
   // The normal test above is only a guess for faces that moved away from

@@ -20,7 +20,13 @@ std::vector<std::int32_t> region_labels(const Mesh& mesh);
 /// The tracked-surface faces of the tets with keep[t] != 0 (every live tet
 /// when keep is empty), each once, oriented like the input triangle of its
 /// smallest id, with its own vertices (doubles: call after rounding).
-TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const TriangleSoup& input);
+/// With Multiplicity::as_chain, each face counts once per input triangle on
+/// it, +1 or -1 by orientation: faces where they cancel are left out and
+/// the others repeated, so the soup is the integer chain the input makes
+/// (a cycle for a closed input) and its winding number jumps correctly.
+enum class Multiplicity { once, as_chain };
+TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const TriangleSoup& input,
+                             Multiplicity multiplicity = Multiplicity::once);
 
 /// Whether every edge of `surface` (vertices compared by index) is run along
 /// as often one way as the other. The surface is then a closed cycle: its

@@ -172,7 +172,7 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, co
       // tets end there. Filtering with the input kept big tets whose
       // centroid fell between the two surfaces, and their far faces left
       // the envelope.
-      const TriangleSoup tracked = detail::tracked_surface(mesh, {}, surface);
+      const TriangleSoup tracked = detail::tracked_surface(mesh, {}, surface, detail::Multiplicity::as_chain);
       const WindingNumberTree tree(tracked);
       const WindingRule rule = options.tetrahedralize.winding_rule;
       // A closed tracked surface (as most inputs give) needs one query per
