@@ -1,31 +1,14 @@
 #include <mr/core/orientation.h>
+#include <mr/core/weld.h>
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <numeric>
 #include <stdexcept>
 #include <tuple>
 
 namespace mr {
 namespace {
-
-// Vertex ids with exactly equal positions merged (soups from STL or from
-// files with duplicated vertices are often not welded).
-std::vector<Index> welded_ids(const TriangleSoup& soup) {
-  std::vector<Index> order(soup.positions.size());
-  std::iota(order.begin(), order.end(), Index{0});
-  const auto key = [&](Index i) {
-    const Vec3d& p = soup.positions[i];
-    return std::make_tuple(p.x(), p.y(), p.z());
-  };
-  std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) { return key(a) < key(b); });
-  std::vector<Index> id(soup.positions.size());
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    id[order[i]] = (i > 0 && key(order[i]) == key(order[i - 1])) ? id[order[i - 1]] : order[i];
-  }
-  return id;
-}
 
 // One directed use of an undirected edge by a face.
 struct EdgeUse {
@@ -47,12 +30,12 @@ struct Adjacency {
   std::vector<std::vector<Link>> links;
 };
 
-Adjacency manifold_adjacency(const TriangleSoup& soup, const std::vector<Index>& id) {
+// `welded` has the soup's triangles, in order, on welded vertices.
+Adjacency manifold_adjacency(const TriangleSoup& welded) {
   std::vector<EdgeUse> uses;
-  uses.reserve(3 * soup.triangles.size());
-  for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
-    const Triangle& t = soup.triangles[f];
-    const std::array<Index, 3> c{id[t[0]], id[t[1]], id[t[2]]};
+  uses.reserve(3 * welded.triangles.size());
+  for (std::uint32_t f = 0; f < welded.triangles.size(); ++f) {
+    const Triangle& c = welded.triangles[f];
     if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) continue;
     for (int i = 0; i < 3; ++i) {
       const Index a = c[i], b = c[(i + 1) % 3];
@@ -63,7 +46,7 @@ Adjacency manifold_adjacency(const TriangleSoup& soup, const std::vector<Index>&
     return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
   });
   Adjacency adjacency;
-  adjacency.links.resize(soup.triangles.size());
+  adjacency.links.resize(welded.triangles.size());
   for (std::size_t i = 0; i < uses.size();) {
     std::size_t j = i;
     while (j < uses.size() && uses[j].same_edge(uses[i])) ++j;
@@ -96,7 +79,8 @@ OrientationStats orient_coherently(TriangleSoup& soup, std::span<const double> v
     throw std::invalid_argument("orient_coherently: one vote per triangle expected");
   }
   OrientationStats stats;
-  const Adjacency adjacency = manifold_adjacency(soup, welded_ids(soup));
+  // Unwelded copies of a vertex (STL) must count as one.
+  const Adjacency adjacency = manifold_adjacency(weld_identical_vertices(soup));
   constexpr std::int8_t kUnvisited = -1;
   std::vector<std::int8_t> flip(soup.triangles.size(), kUnvisited);
   std::vector<std::uint32_t> patch, queue;

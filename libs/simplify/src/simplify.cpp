@@ -1,8 +1,9 @@
 #include <mr/simplify/simplify.h>
 
+#include <mr/core/weld.h>
+
 #include "mesh_state.h"
 #include "passes.h"
-#include "weld.h"
 
 #include <mr/core/errors.h>
 

@@ -60,9 +60,8 @@ int face_direction(const Mesh& mesh, Index t, int k, const TriangleSoup& input, 
   if (own != 0) return -own;
   const Index n = mesh.neighbour(t, k);
   if (n != kNoTet) {
-    for (int j = 0; j < 4; ++j) {
-      const Index v = mesh.tet(n)[j];
-      const auto corners = mesh.face_vertices(t, k);
+    const auto corners = mesh.face_vertices(t, k);
+    for (const Index v : mesh.tet(n)) {
       if (std::find(corners.begin(), corners.end(), v) != corners.end()) continue;
       const int other = side(v);
       if (other != 0) return other;

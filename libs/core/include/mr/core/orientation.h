@@ -19,7 +19,7 @@ struct OrientationStats {
 };
 
 /// Makes every patch (faces connected through edges with exactly two faces,
-/// vertices compared by exact position) consistently oriented, keeping the
+/// vertices compared by bit-identical position) consistently oriented, keeping the
 /// orientation of the larger part of its area. Patches are never flipped as
 /// a whole, so an intentionally inverted shell (a cavity) stays inverted.
 /// Non-manifold edges, boundary edges, faces with a repeated corner and

@@ -1,12 +1,13 @@
 #pragma once
-// Merging of vertices with bit-identical coordinates.
+// Merging of vertices with bit-identical coordinates (soups read from STL,
+// or written with duplicated vertices, are often not welded).
 
 #include <mr/core/triangle_soup.h>
 
-namespace mr::simplify {
+namespace mr {
 
 /// Positions and triangles of `soup` with bit-identical vertices merged; each
 /// vertex keeps the index of its first occurrence order. Attributes are dropped.
 TriangleSoup weld_identical_vertices(const TriangleSoup& soup);
 
-}  // namespace mr::simplify
+}  // namespace mr

@@ -1,11 +1,11 @@
-#include "weld.h"
+#include <mr/core/weld.h>
 
 #include <array>
 #include <bit>
 #include <cstdint>
 #include <unordered_map>
 
-namespace mr::simplify {
+namespace mr {
 namespace {
 
 using Bits = std::array<std::uint64_t, 3>;
@@ -41,4 +41,4 @@ TriangleSoup weld_identical_vertices(const TriangleSoup& soup) {
   return welded;
 }
 
-}  // namespace mr::simplify
+}  // namespace mr
