@@ -5,6 +5,7 @@
 
 #include <mr/core/errors.h>
 #include <mr/core/orientation.h>
+#include <mr/core/thicken.h>
 #include <mr/envelope/envelope.h>
 #include <mr/simplify/simplify.h>
 #include <mr/spatial/aabb_tree.h>
@@ -47,10 +48,14 @@ void count(StageTimer& timer, const char* key, std::size_t value) {
   timer.stage().count(key, static_cast<std::int64_t>(value));
 }
 
-// Insertions to try before giving up: after a failed rounding, the
-// triangles that created the stuck points are left out and the embedding
-// starts over from a fresh background mesh.
+// Embeddings to try before giving up: when some cut points cannot be
+// rounded even after improvement, the triangles that created them are left
+// out and the embedding starts over from a fresh background mesh.
 constexpr int kEmbeddingAttempts = 8;
+
+// Improvement passes run by the fast path (no improvement asked for) only
+// when rounding left rational points: moving their neighbours frees them.
+constexpr int kRoundingRescuePasses = 2;
 
 std::unique_ptr<envelope::Envelope> input_envelope(const TriangleSoup& input, const DerivedParameters& derived) {
   envelope::EnvelopeOptions envelope_options;
@@ -58,49 +63,107 @@ std::unique_ptr<envelope::Envelope> input_envelope(const TriangleSoup& input, co
   return envelope::make_envelope(input, envelope_options);
 }
 
-Mesh embed(const TriangleSoup& surface, const envelope::Envelope& envelope, const DerivedParameters& derived,
-           const PipelineOptions& options, PipelineStats& stats, const Logger& logger) {
+std::size_t count_rational(const Mesh& mesh) {
+  std::size_t count = 0;
+  for (Index v = 0; v < mesh.vertex_slots(); ++v) count += mesh.vertex_alive(v) && mesh.position(v).is_exact();
+  return count;
+}
+
+struct Embedding {
+  Mesh mesh;
+  /// Per vertex slot, the input triangle whose insertion created it.
+  std::vector<std::uint32_t> creator;
+};
+
+// Background mesh, insertion of every triangle not skipped, and rounding of
+// the cut points as far as local moves inside the envelope allow.
+Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, const envelope::Envelope& envelope,
+                     const DerivedParameters& derived, const PipelineOptions& options, PipelineStats& stats,
+                     const Logger& logger) {
+  BackgroundMesh background;
+  {
+    StageTimer timer(stats, "background", logger);
+    background = build_background_mesh(surface, spatial::AabbTree(surface),
+                                       background_parameters(derived, options.tetrahedralize.threads));
+    count(timer, "vertices", background.mesh.num_vertices());
+    count(timer, "tets", background.mesh.num_tets());
+  }
+  Embedding embedding{std::move(background.mesh), {}};
+  Mesh& mesh = embedding.mesh;
+  {
+    StageTimer timer(stats, "insertion", logger);
+    InsertionStats inserted = insert_triangles(mesh, surface, background.input_vertex, skip, logger);
+    count(timer, "triangles", inserted.inserted);
+    count(timer, "degenerate_skipped", inserted.degenerate);
+    count(timer, "left_out", inserted.skipped);
+    count(timer, "cut_points", inserted.new_vertices);
+    count(timer, "steiner_points", inserted.steiner_points);
+    count(timer, "tets", mesh.num_tets());
+    embedding.creator = std::move(inserted.vertex_creator);
+  }
+  StageTimer timer(stats, "rounding", logger);
+  // A cut point closer than this to a neighbour may be merged with it: far
+  // below epsilon, so the tracked surface stays in the envelope.
+  const detail::RoundingCounters rounding = detail::round_or_collapse(mesh, 1e-3 * derived.epsilon);
+  count(timer, "rounded", rounding.rounded);
+  count(timer, "collapsed", rounding.collapsed);
+  std::size_t remaining = rounding.remaining;
+  if (remaining != 0) {
+    // Moves within the envelope: to nearby doubles, or onto any neighbour.
+    const RoundingStats moved = round_vertices(mesh, envelope, logger);
+    count(timer, "moved", moved.moved + moved.collapsed);
+    remaining = moved.remaining;
+  }
+  count(timer, "rational_vertices", remaining);
+  return embedding;
+}
+
+void improve(Mesh& mesh, const envelope::Envelope& envelope, const DerivedParameters& derived, int max_passes,
+             const PipelineOptions& options, PipelineStats& stats, const Logger& logger) {
+  StageTimer timer(stats, "improve", logger);
+  ImproveOptions improve_options;
+  improve_options.target_edge_length = derived.edge_length;
+  improve_options.stop_energy = options.tetrahedralize.stop_energy;
+  improve_options.max_passes = max_passes;
+  improve_options.threads = options.tetrahedralize.threads;
+  const ImproveStats improved = improve_mesh(mesh, envelope, improve_options, logger);
+  count(timer, "passes", static_cast<std::size_t>(improved.passes));
+  count(timer, "splits", improved.splits);
+  count(timer, "collapses", improved.collapses);
+  count(timer, "swaps", improved.swaps_32 + improved.swaps_23 + improved.swaps_44);
+  count(timer, "smoothing_moves", improved.smoothing_moves);
+  count(timer, "rational_vertices", improved.rational_vertices);
+  if (improved.rational_vertices != 0) {
+    const RoundingStats rounded = round_vertices(mesh, envelope, logger);
+    count(timer, "rational_vertices_after_rounding", rounded.remaining);
+  }
+}
+
+// Embeds the surface, improves the mesh when asked, and makes sure every
+// vertex has double coordinates. Cut points that rounding cannot place stay
+// rational through improvement, which usually frees them by moving their
+// neighbours; only when some are still stuck is the embedding redone
+// without the triangles that created them.
+Mesh embed_and_improve(const TriangleSoup& surface, const envelope::Envelope& envelope,
+                       const DerivedParameters& derived, const PipelineOptions& options, PipelineStats& stats,
+                       const Logger& logger) {
   std::vector<char> skip(surface.triangles.size(), 0);
   for (int attempt = 1;; ++attempt) {
-    BackgroundMesh background;
-    {
-      StageTimer timer(stats, "background", logger);
-      background = build_background_mesh(surface, spatial::AabbTree(surface),
-                                         background_parameters(derived, options.tetrahedralize.threads));
-      count(timer, "vertices", background.mesh.num_vertices());
-      count(timer, "tets", background.mesh.num_tets());
+    Embedding embedding = embed_once(surface, skip, envelope, derived, options, stats, logger);
+    Mesh& mesh = embedding.mesh;
+    if (options.improve) {
+      improve(mesh, envelope, derived, options.tetrahedralize.max_passes, options, stats, logger);
+    } else if (count_rational(mesh) != 0) {
+      improve(mesh, envelope, derived, kRoundingRescuePasses, options, stats, logger);
     }
-    Mesh& mesh = background.mesh;
-    InsertionStats inserted;
-    {
-      StageTimer timer(stats, "insertion", logger);
-      inserted = insert_triangles(mesh, surface, background.input_vertex, skip, logger);
-      count(timer, "triangles", inserted.inserted);
-      count(timer, "degenerate_skipped", inserted.degenerate);
-      count(timer, "left_out", inserted.skipped);
-      count(timer, "cut_points", inserted.new_vertices);
-      count(timer, "steiner_points", inserted.steiner_points);
-      count(timer, "tets", mesh.num_tets());
-    }
-    StageTimer timer(stats, "rounding", logger);
-    // A cut point closer than this to a neighbour may be merged with it: far
-    // below epsilon, so the tracked surface stays in the envelope.
-    const detail::RoundingCounters rounding = detail::round_or_collapse(mesh, 1e-3 * derived.epsilon);
-    count(timer, "rounded", rounding.rounded);
-    count(timer, "collapsed", rounding.collapsed);
-    std::size_t remaining = rounding.remaining;
-    if (remaining != 0) {
-      // Moves within the envelope: to nearby doubles, or onto any neighbour.
-      const RoundingStats moved = round_vertices(mesh, envelope, logger);
-      count(timer, "moved", moved.moved + moved.collapsed);
-      remaining = moved.remaining;
-    }
-    count(timer, "rational_vertices", remaining);
+    const std::size_t remaining = count_rational(mesh);
     if (remaining == 0) return std::move(mesh);
+    // Rational points are only ever made by insertion, so a rational
+    // vertex still sits in the slot its creator gave it.
     std::size_t newly_skipped = 0;
     for (Index v = 0; v < mesh.vertex_slots(); ++v) {
-      if (!mesh.vertex_alive(v) || !mesh.position(v).is_exact()) continue;
-      const std::uint32_t creator = inserted.vertex_creator[v];
+      if (!mesh.vertex_alive(v) || !mesh.position(v).is_exact() || v >= embedding.creator.size()) continue;
+      const std::uint32_t creator = embedding.creator[v];
       if (creator != InsertionStats::kNoCreator && skip[creator] == 0) {
         skip[creator] = 1;
         ++newly_skipped;
@@ -112,30 +175,6 @@ Mesh embed(const TriangleSoup& surface, const envelope::Envelope& envelope, cons
     }
     logger.log(LogLevel::warning, std::to_string(remaining) + " cut points could not be rounded: "
                "inserting again without the " + std::to_string(newly_skipped) + " triangles that made them");
-  }
-}
-
-void improve(Mesh& mesh, const envelope::Envelope& envelope, const DerivedParameters& derived,
-             const PipelineOptions& options, PipelineStats& stats, const Logger& logger) {
-  StageTimer timer(stats, "improve", logger);
-  ImproveOptions improve_options;
-  improve_options.target_edge_length = derived.edge_length;
-  improve_options.stop_energy = options.tetrahedralize.stop_energy;
-  improve_options.max_passes = options.tetrahedralize.max_passes;
-  improve_options.threads = options.tetrahedralize.threads;
-  const ImproveStats improved = improve_mesh(mesh, envelope, improve_options, logger);
-  count(timer, "passes", static_cast<std::size_t>(improved.passes));
-  count(timer, "splits", improved.splits);
-  count(timer, "collapses", improved.collapses);
-  count(timer, "swaps", improved.swaps_32 + improved.swaps_23 + improved.swaps_44);
-  count(timer, "smoothing_moves", improved.smoothing_moves);
-  count(timer, "rational_vertices", improved.rational_vertices);
-  if (improved.rational_vertices != 0) {
-    const RoundingStats rounded = round_vertices(mesh, envelope, logger);
-    if (rounded.remaining != 0) {
-      throw RunError(std::to_string(rounded.remaining) + " vertices could not be rounded to doubles after "
-                     "mesh improvement; the mesh is not written");
-    }
   }
 }
 
@@ -151,16 +190,18 @@ TriangleSoup oriented_input(const TriangleSoup& input, PipelineStats& stats, con
   return oriented;
 }
 
-PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, const Logger& logger) {
+// `stats` carries the stages of an earlier run, if any: their times add up.
+PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, PipelineStats stats,
+                   const Logger& logger) {
   PipelineResult result;
+  result.stats = std::move(stats);
   result.parameters = derive_parameters(options.tetrahedralize, input);
   const DerivedParameters& derived = result.parameters;
   const TriangleSoup oriented = oriented_input(input, result.stats, logger);
   const TriangleSoup surface = simplified_input(oriented, options, derived, result.stats, logger);
 
   const std::unique_ptr<envelope::Envelope> envelope = input_envelope(input, derived);
-  Mesh mesh = embed(surface, *envelope, derived, options, result.stats, logger);
-  if (options.improve) improve(mesh, *envelope, derived, options, result.stats, logger);
+  Mesh mesh = embed_and_improve(surface, *envelope, derived, options, result.stats, logger);
 
   std::vector<char> keep;
   {
@@ -210,13 +251,42 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, co
   return result;
 }
 
+// An input that encloses no volume (sheets only, or every face doubled
+// with both orientations) leaves nothing to keep. Its sheets are then given
+// a thickness of epsilon and the pipeline runs again with half the epsilon:
+// the prisms are within epsilon/2 of the input and the result within
+// epsilon/2 of the prisms. The tets are valid but not improved (see below).
+PipelineResult solid_from_sheets(const TriangleSoup& input, const PipelineOptions& options,
+                                 PipelineResult empty, const Logger& logger) {
+  const DerivedParameters derived = empty.parameters;
+  logger.log(LogLevel::warning, "the input encloses no volume: meshing its sheets thickened to epsilon");
+  PipelineOptions thick = options;
+  thick.tetrahedralize.epsilon_abs = 0.5 * derived.epsilon;
+  thick.tetrahedralize.edge_length_abs = derived.edge_length;
+  // Improvement moves surface vertices by up to epsilon/2, enough to turn
+  // the faces of walls only epsilon high over; the filter orients tracked
+  // faces by geometry, so the shell would leak. The fast path's embedding
+  // keeps them where insertion put them.
+  thick.improve = false;
+  empty.stats.stage("filter").count("thickened_sheets", 1);
+  PipelineResult result = run(thicken_sheets(input, 0.5 * derived.epsilon), thick, std::move(empty.stats), logger);
+  result.parameters.epsilon = derived.epsilon;  // what the result is within, measured from the input
+  return result;
+}
+
+PipelineResult run_to_solid(const TriangleSoup& input, const PipelineOptions& options, const Logger& logger) {
+  PipelineResult result = run(input, options, {}, logger);
+  if (!options.filter || !result.mesh.tets.empty()) return result;
+  return solid_from_sheets(input, options, std::move(result), logger);
+}
+
 }  // namespace
 
 PipelineResult tetrahedralize(const TriangleSoup& input, const PipelineOptions& options, const Logger& logger) {
   const int threads = options.tetrahedralize.threads > 0 ? options.tetrahedralize.threads
                                                          : tbb::info::default_concurrency();
   tbb::task_arena arena(threads);
-  return arena.execute([&] { return run(input, options, logger); });
+  return arena.execute([&] { return run_to_solid(input, options, logger); });
 }
 
 }  // namespace mr::tetmesh

@@ -1,0 +1,18 @@
+#pragma once
+// Sheets made solid: a surface that encloses no volume (a flat or
+// doubled-up sheet, planes crossing like the pages of a book) turned into a
+// closed soup that does, so that tools asked for a solid still have one.
+
+#include <mr/core/triangle_soup.h>
+
+namespace mr {
+
+/// Each triangle of `soup` becomes a closed prism, the triangle swept
+/// `half_thickness` to both sides along its normal, oriented outward (8
+/// triangles). Every point of a prism is within `half_thickness` of its
+/// triangle, so the union of the prisms stays that close to the input.
+/// Zero-area triangles have no normal and are left out. Attributes are not
+/// carried over.
+TriangleSoup thicken_sheets(const TriangleSoup& soup, double half_thickness);
+
+}  // namespace mr

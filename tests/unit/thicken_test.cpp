@@ -1,0 +1,79 @@
+// Sheets that enclose no volume: thicken_sheets makes closed prisms of them,
+// and the pipeline falls back to that instead of returning an empty mesh.
+
+#include "test_support.h"
+
+#include <mr/check/distance.h>
+#include <mr/check/tet_check.h>
+#include <mr/core/thicken.h>
+#include <mr/tetmesh/tetrahedralize.h>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace mr;
+
+namespace {
+
+// Three unit squares through the origin, one per coordinate plane, each
+// face present with both orientations (as libigl's degenerated.obj): every
+// edge is non-manifold and the winding number is zero everywhere.
+TriangleSoup crossing_doubled_sheets() {
+  TriangleSoup soup;
+  soup.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+  const std::vector<Triangle> sheet = {{0, 1, 2}, {0, 1, 5}, {0, 1, 3}, {0, 1, 6}, {0, 4, 2}, {0, 4, 5},
+                                       {0, 4, 3}, {0, 4, 6}, {0, 2, 3}, {0, 5, 3}, {0, 2, 6}, {0, 5, 6}};
+  for (const Triangle& t : sheet) {
+    soup.triangles.push_back(t);
+    soup.triangles.push_back({t[0], t[2], t[1]});
+  }
+  return soup;
+}
+
+std::int64_t filter_count(const tetmesh::PipelineResult& result, const std::string& key) {
+  for (const tetmesh::StageStats& stage : result.stats.stages) {
+    if (stage.name != "filter") continue;
+    for (const auto& [name, value] : stage.counts) {
+      if (name == key) return value;
+    }
+  }
+  return -1;
+}
+
+}  // namespace
+
+TEST_CASE("thicken_sheets: a triangle becomes a closed outward prism within the half thickness",
+          "[thicken]") {
+  TriangleSoup triangle;
+  triangle.positions = {{0, 0, 0}, {2, 0, 0}, {0, 1, 0}, {5, 5, 5}};
+  triangle.triangles = {{0, 1, 2}, {0, 3, 3}};  // the second has no area: left out
+  const double half = 0.25;
+  const TriangleSoup prism = thicken_sheets(triangle, half);
+  REQUIRE(prism.triangles.size() == 8);
+  CHECK(std::abs(test::enclosed_volume(prism) - 1.0 * 2 * half) < 1e-12);
+  TriangleSoup flat;
+  flat.positions = triangle.positions;
+  flat.triangles = {triangle.triangles[0]};
+  CHECK(check::one_sided_distance(prism, flat).max <= half * (1 + 1e-12));
+}
+
+TEST_CASE("tetrahedralize: an input enclosing no volume gives its sheets thickened, not nothing",
+          "[thicken][tetrahedralize]") {
+  const TriangleSoup sheets = crossing_doubled_sheets();
+  tetmesh::PipelineOptions options;
+  options.improve = false;
+  const tetmesh::PipelineResult result = tetmesh::tetrahedralize(sheets, options);
+  CHECK(filter_count(result, "thickened_sheets") == 1);
+  CHECK(filter_count(result, "closed_surface") == 1);
+  const check::TetReport report = check::check_tets(result.mesh);
+  CHECK(report.valid());
+  CHECK(report.boundary.closed());
+  // Three crossing unit squares (area 2 each, as 4 triangles of 1/2), a
+  // thickness of epsilon: where they cross the prisms overlap, so a little
+  // less than 6 epsilon, never more.
+  const double epsilon = result.parameters.epsilon;
+  CHECK(report.volume > 0.8 * 6 * epsilon);
+  CHECK(report.volume < 1.05 * 6 * epsilon);
+  CHECK(check::one_sided_distance(result.tracked_surface, sheets).max <= epsilon);
+}
