@@ -1,5 +1,6 @@
 #include <mr/kernel/exact_point.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -79,6 +80,15 @@ bool is_representable(const ExactPoint3& p) {
     if (q != mpq_class(q.get_d())) return false;
   }
   return true;
+}
+
+std::size_t bit_size(const ExactPoint3& p) {
+  std::size_t bits = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const mpq_class& q = p[axis];
+    bits = std::max(bits, mpz_sizeinbase(q.get_num_mpz_t(), 2) + mpz_sizeinbase(q.get_den_mpz_t(), 2));
+  }
+  return bits;
 }
 
 int orient3d(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c,

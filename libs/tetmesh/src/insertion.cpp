@@ -4,9 +4,59 @@
 
 #include <mr/core/errors.h>
 
+#include <algorithm>
+#include <map>
 #include <string>
 
 namespace mr::tetmesh {
+namespace {
+
+// Copies of one triangle (the same three mesh vertices, in either order)
+// embed as the same faces: only the first is inserted, and the others' ids
+// are added where it landed. CAD soups repeat faces by the thousand, and
+// each copy would otherwise walk and test every tet of its plane again.
+class Copies {
+ public:
+  /// The id of the first triangle on these corners, or `id` when it is the first.
+  std::uint32_t first_on(Index a, Index b, Index c, std::uint32_t id) {
+    std::array<Index, 3> key{a, b, c};
+    std::sort(key.begin(), key.end());
+    const auto [it, inserted] = first_.try_emplace(key, id);
+    if (!inserted) copies_[it->second].push_back(id);
+    return it->second;
+  }
+
+  std::size_t count() const {
+    std::size_t n = 0;
+    for (const auto& [first, ids] : copies_) n += ids.size();
+    return n;
+  }
+
+  /// Adds the copies' ids to every face that carries their first's id.
+  void mark(Mesh& mesh) const {
+    if (copies_.empty()) return;
+    for (Index t = 0; t < mesh.tet_slots(); ++t) {
+      if (!mesh.tet_alive(t)) continue;
+      for (int k = 0; k < 4; ++k) {
+        const auto ids = mesh.surface_ids(t, k);
+        const Index n = mesh.neighbour(t, k);
+        if (ids.empty() || (n != kNoTet && n < t)) continue;  // each face once
+        std::vector<std::uint32_t> all(ids.begin(), ids.end());
+        for (const std::uint32_t id : ids) {
+          const auto found = copies_.find(id);
+          if (found != copies_.end()) all.insert(all.end(), found->second.begin(), found->second.end());
+        }
+        if (all.size() != ids.size()) mesh.set_surface_ids(t, k, all);
+      }
+    }
+  }
+
+ private:
+  std::map<std::array<Index, 3>, std::uint32_t> first_;
+  std::map<std::uint32_t, std::vector<std::uint32_t>> copies_;
+};
+
+}  // namespace
 
 InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input,
                                 std::span<const Index> input_vertex, std::span<const char> skip,
@@ -18,6 +68,7 @@ InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input,
     throw UsageError("insert_triangles: the skip list does not match the input");
   }
   detail::TriangleInserter inserter(mesh);
+  Copies copies;
   InsertionStats stats;
   const std::size_t n = input.triangles.size();
   const std::size_t report_every = std::max<std::size_t>(1, n / 100);
@@ -27,9 +78,13 @@ InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input,
       continue;
     }
     const Triangle& f = input.triangles[i];
-    inserter.insert(input_vertex[f[0]], input_vertex[f[1]], input_vertex[f[2]], static_cast<std::uint32_t>(i));
+    const Index a = input_vertex[f[0]], b = input_vertex[f[1]], c = input_vertex[f[2]];
+    const auto id = static_cast<std::uint32_t>(i);
+    if (copies.first_on(a, b, c, id) == id) inserter.insert(a, b, c, id);
     if (i % report_every == 0) logger.progress("insertion", static_cast<double>(i) / static_cast<double>(n));
   }
+  copies.mark(mesh);
+  stats.copies = copies.count();
   const detail::InsertionCounters& c = inserter.counters();
   stats.inserted = c.inserted;
   stats.degenerate = c.degenerate;
@@ -38,12 +93,14 @@ InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input,
   stats.new_tets = c.new_tets;
   stats.new_vertices = c.new_vertices;
   stats.steiner_points = c.steiner_points;
+  stats.eagerly_rounded = c.eagerly_rounded;
   stats.vertex_creator = inserter.creators();
   stats.vertex_creator.resize(mesh.vertex_slots(), InsertionStats::kNoCreator);
   for (Index v = 0; v < mesh.vertex_slots(); ++v) {
     stats.rational_vertices += mesh.vertex_alive(v) && mesh.position(v).is_exact();
   }
-  logger.log(LogLevel::debug, "insertion: " + std::to_string(stats.inserted) + " triangles, " +
+  logger.log(LogLevel::debug, "insertion: " + std::to_string(stats.inserted) + " triangles (and " +
+                                  std::to_string(stats.copies) + " copies), " +
                                   std::to_string(stats.new_vertices) + " cut points, " +
                                   std::to_string(stats.rational_vertices) + " still rational");
   return stats;

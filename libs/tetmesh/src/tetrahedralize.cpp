@@ -95,9 +95,11 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
     InsertionStats inserted = insert_triangles(mesh, surface, background.input_vertex, skip, logger);
     count(timer, "triangles", inserted.inserted);
     count(timer, "degenerate_skipped", inserted.degenerate);
+    count(timer, "copies", inserted.copies);
     count(timer, "left_out", inserted.skipped);
     count(timer, "cut_points", inserted.new_vertices);
     count(timer, "steiner_points", inserted.steiner_points);
+    count(timer, "eagerly_rounded", inserted.eagerly_rounded);
     count(timer, "tets", mesh.num_tets());
     embedding.creator = std::move(inserted.vertex_creator);
   }

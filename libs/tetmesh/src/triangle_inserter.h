@@ -42,6 +42,7 @@ struct InsertionCounters {
   std::size_t new_tets = 0;
   std::size_t new_vertices = 0;    ///< cut points (Steiner points excluded)
   std::size_t steiner_points = 0;  ///< cell centres, where no corner could cone a cell
+  std::size_t eagerly_rounded = 0; ///< cut points rounded during insertion (too many bits)
 };
 
 class TriangleInserter {
@@ -58,6 +59,8 @@ class TriangleInserter {
   const std::vector<std::uint32_t>& creators() const { return creator_; }
 
   static constexpr std::uint32_t kNoCreator = std::numeric_limits<std::uint32_t>::max();
+  /// Cut points longer than this (bit_size) are rounded during insertion.
+  static constexpr std::size_t kMaxExactBits = 1024;
 
  private:
   using Ids = std::vector<std::uint32_t>;
@@ -101,6 +104,7 @@ class TriangleInserter {
   void add_polygon(const std::vector<Index>& polygon, const Ids& ids, int plane, std::vector<CellTriangle>& cell);
   void build_cell(std::vector<CellTriangle>& cell, std::vector<ConeTet>& tets);
   void rebuild_cavity();
+  void round_oversized_points(std::span<const Index> created);
   void note_new_vertex(Index v);
 
   bool stamped(std::vector<std::uint32_t>& stamps, Index t) const;

@@ -5,6 +5,8 @@
 
 #include "inserter_keys.h"
 
+#include <mr/kernel/rounding.h>
+
 #include <algorithm>
 
 namespace mr::tetmesh::detail {
@@ -123,8 +125,36 @@ void TriangleInserter::rebuild_cavity() {
   counters_.cut_tets += cut_tets_.size();
   counters_.rebuilt_tets += cavity_.size();
   counters_.new_tets += created.size();
+  round_oversized_points(std::span<const Index>(created.data(), tets.size()));
   created.insert(created.end(), outside.begin(), outside.end());
   mesh_.connect(created);
+}
+
+// A cut point on a segment between earlier cut points has coordinates
+// several times as long as theirs, and chains of such cuts (faces repeated
+// or crossing many times, as in CAD soups) grow them into thousands of bits
+// that make every later predicate slow (trimesh/chair_model spent most of
+// its time multiplying them). Points past kMaxExactBits are rounded at once
+// when no tet around them inverts; the others wait for the rounding stage
+// (rounding every point at once left knots, see rounding_stage.h).
+void TriangleInserter::round_oversized_points(std::span<const Index> created) {
+  std::vector<Index> oversized;
+  for (const Index v : new_vertices_) {
+    const HybridPoint& p = mesh_.position(v);
+    if (p.is_exact() && bit_size(*p.exact) > kMaxExactBits) oversized.push_back(v);
+  }
+  std::sort(oversized.begin(), oversized.end());
+  std::vector<OppositeFace> star;
+  for (const Index v : oversized) {
+    star.clear();
+    for (const Index t : created) {
+      const int corner = mesh_.corner_of(t, v);
+      if (corner < 0) continue;
+      const auto f = opposite_face(mesh_.tet(t), corner);
+      star.push_back({&mesh_.position(f[0]), &mesh_.position(f[1]), &mesh_.position(f[2])});
+    }
+    if (try_round(mesh_.position(v), star)) ++counters_.eagerly_rounded;
+  }
 }
 
 }  // namespace mr::tetmesh::detail

@@ -307,3 +307,19 @@ TEST_CASE("exact orientation of rational points matches the rational determinant
   }
   CHECK(zeros >= 900);
 }
+
+TEST_CASE("bit_size counts the bits of the longest coordinate", "[kernel]") {
+  CHECK(bit_size(ExactPoint3(Vec3d(0.5, 3.0, -1.0))) == 3);  // 1/2 and 3/1: two bits and one
+  const ExactPoint3 third(mpq_class(1, 3), mpq_class(0), mpq_class(-255, 256));
+  CHECK(bit_size(third) == 8 + 9);
+  // A cut of a cut is much longer than a cut of doubles.
+  const HybridPoint a(Vec3d(0.1, 0.2, 0.3)), b(Vec3d(0.9, 0.7, 0.4));
+  const HybridPoint p(Vec3d(0.5, 0, 0)), q(Vec3d(0.45, 1, 0.1)), r(Vec3d(0.55, 0.3, 1));
+  const HybridPoint first = HybridPoint::from_exact(intersect_segment_plane(a, b, p, q, r));
+  const HybridPoint second = HybridPoint::from_exact(
+      intersect_segment_plane(first, HybridPoint(Vec3d(0.2, 0.9, 0.8)), Vec3d(0, 0.4, 0), Vec3d(1, 0.5, 0.1),
+                              Vec3d(0.3, 0.45, 1)));
+  REQUIRE(first.is_exact());
+  REQUIRE(second.is_exact());
+  CHECK(bit_size(*second.exact) > 3 * bit_size(*first.exact) / 2);
+}

@@ -110,6 +110,8 @@ TEST_CASE("insertion: coplanar overlapping and duplicated triangles", "[tetmesh]
   soup.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.2, 0.2, 0}, {1.3, 0.4, 0}, {0.1, 0.9, 0}, {0, 0, 1}};
   soup.triangles = {{0, 1, 2}, {3, 4, 5}, {0, 1, 2}, {2, 1, 0}, {0, 1, 6}};
   const Inserted inserted = insert_soup(soup);
+  CHECK(inserted.stats.copies == 2);  // inserted once, marked three times
+  CHECK(inserted.stats.inserted == 3);
   require_exactly_embedded(soup, inserted);
 }
 
@@ -133,4 +135,15 @@ TEST_CASE("insertion: random intersecting soups are embedded exactly", "[tetmesh
     const Inserted inserted = insert_soup(soup);
     require_exactly_embedded(soup, inserted);
   }
+}
+
+TEST_CASE("insertion: cut points that grow too long are rounded at once, the embedding still exact",
+          "[tetmesh][insertion]") {
+  // Many triangles through one small region: cuts of cuts of cuts, whose
+  // exact coordinates grow past TriangleInserter::kMaxExactBits.
+  const TriangleSoup soup = random_soup(7, 30);
+  const Inserted inserted = insert_soup(soup);
+  INFO("rounded during insertion: " << inserted.stats.eagerly_rounded << " of " << inserted.stats.new_vertices << " rational left " << inserted.stats.rational_vertices);
+  CHECK(inserted.stats.eagerly_rounded > 0);
+  require_exactly_embedded(soup, inserted);
 }

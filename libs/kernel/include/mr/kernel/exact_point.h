@@ -37,6 +37,10 @@ Vec3d round_to_nearest(const ExactPoint3& p);
 /// True when every coordinate of p is exactly a double.
 bool is_representable(const ExactPoint3& p);
 
+/// The bits of the largest coordinate (numerator plus denominator): what
+/// every exact operation on p costs grows with it.
+std::size_t bit_size(const ExactPoint3& p);
+
 /// Exact evaluations, same conventions as predicates.h.
 int orient3d(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c,
              const ExactPoint3& d);

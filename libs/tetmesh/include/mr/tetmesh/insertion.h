@@ -18,11 +18,13 @@ namespace mr::tetmesh {
 struct InsertionStats {
   std::size_t inserted = 0;
   std::size_t degenerate = 0;       ///< skipped: collinear corners, nothing to embed
+  std::size_t copies = 0;           ///< repeats of an earlier triangle's corners: marked, not cut again
   std::size_t cut_tets = 0;
   std::size_t rebuilt_tets = 0;
   std::size_t new_tets = 0;
   std::size_t new_vertices = 0;
   std::size_t steiner_points = 0;
+  std::size_t eagerly_rounded = 0;   ///< cut points too long to keep exact, rounded at once
   std::size_t skipped = 0;           ///< left out on request (see `skip`)
   std::size_t rational_vertices = 0; ///< still rational when insertion ended
   /// Per vertex slot, the id of the triangle whose insertion created the
