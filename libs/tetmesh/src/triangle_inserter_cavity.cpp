@@ -143,16 +143,23 @@ void TriangleInserter::round_oversized_points(std::span<const Index> created) {
     const HybridPoint& p = mesh_.position(v);
     if (p.is_exact() && bit_size(*p.exact) > kMaxExactBits) oversized.push_back(v);
   }
+  if (oversized.empty()) return;
   std::sort(oversized.begin(), oversized.end());
-  std::vector<OppositeFace> star;
-  for (const Index v : oversized) {
-    star.clear();
-    for (const Index t : created) {
-      const int corner = mesh_.corner_of(t, v);
-      if (corner < 0) continue;
-      const auto f = opposite_face(mesh_.tet(t), corner);
-      star.push_back({&mesh_.position(f[0]), &mesh_.position(f[1]), &mesh_.position(f[2])});
+  // Every tet around a new point is new: the stars come from `created`.
+  std::vector<std::vector<OppositeFace>> stars(oversized.size());
+  for (const Index t : created) {
+    const Tet& tet = mesh_.tet(t);
+    for (int corner = 0; corner < 4; ++corner) {
+      const auto it = std::lower_bound(oversized.begin(), oversized.end(), tet[corner]);
+      if (it == oversized.end() || *it != tet[corner]) continue;
+      const auto f = opposite_face(tet, corner);
+      stars[std::size_t(it - oversized.begin())].push_back(
+          {&mesh_.position(f[0]), &mesh_.position(f[1]), &mesh_.position(f[2])});
     }
+  }
+  for (std::size_t i = 0; i < oversized.size(); ++i) {
+    const Index v = oversized[i];
+    const std::vector<OppositeFace>& star = stars[i];
     if (try_round(mesh_.position(v), star)) ++counters_.eagerly_rounded;
   }
 }
