@@ -1,34 +1,42 @@
 #include <mr/kernel/constructions.h>
 
+#include "homogeneous.h"
+
 #include <mr/core/errors.h>
 
 namespace mr {
-namespace {
-
-/// Six times the signed volume of (p, q, r, x), exactly.
-mpq_class signed_volume(const ExactPoint3& p, const ExactPoint3& q, const ExactPoint3& r,
-                        const ExactPoint3& x) {
-  const mpq_class ux = q.x - p.x, uy = q.y - p.y, uz = q.z - p.z;
-  const mpq_class vx = r.x - p.x, vy = r.y - p.y, vz = r.z - p.z;
-  const mpq_class wx = x.x - p.x, wy = x.y - p.y, wz = x.z - p.z;
-  return ux * (vy * wz - vz * wy) + uy * (vz * wx - vx * wz) + uz * (vx * wy - vy * wx);
-}
-
-}  // namespace
 
 ExactPoint3 intersect_segment_plane(const HybridPoint& a, const HybridPoint& b,
                                     const HybridPoint& p, const HybridPoint& q,
                                     const HybridPoint& r) {
-  const ExactPoint3 ea = a.to_exact(), eb = b.to_exact();
-  const ExactPoint3 ep = p.to_exact(), eq = q.to_exact(), er = r.to_exact();
-  const mpq_class va = signed_volume(ep, eq, er, ea);
-  const mpq_class vb = signed_volume(ep, eq, er, eb);
-  if (sgn(va) * sgn(vb) > 0 || (sgn(va) == 0 && sgn(vb) == 0)) {
+  // On integers over common denominators (detail::Homogeneous): a chain of
+  // mpq operations reduces every intermediate by a gcd; this reduces the
+  // three coordinates once, at the end.
+  using detail::scaled_difference;
+  const detail::Homogeneous ha = detail::homogeneous(a.to_exact()), hb = detail::homogeneous(b.to_exact());
+  const detail::Homogeneous hp = detail::homogeneous(p.to_exact());
+  const auto u = scaled_difference(detail::homogeneous(q.to_exact()), hp);
+  const auto v = scaled_difference(detail::homogeneous(r.to_exact()), hp);
+  const std::array<mpz_class, 3> normal{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                                        u[0] * v[1] - u[1] * v[0]};
+  // The sides of a and b, each times a positive factor k * a.w (b.w).
+  const auto side = [&](const detail::Homogeneous& x) {
+    const auto d = scaled_difference(x, hp);
+    return mpz_class(normal[0] * d[0] + normal[1] * d[1] + normal[2] * d[2]);
+  };
+  const mpz_class sa = side(ha), sb = side(hb);
+  if (sgn(sa) * sgn(sb) > 0 || (sgn(sa) == 0 && sgn(sb) == 0)) {
     throw UsageError("intersect_segment_plane: the segment does not cross the plane at one point");
   }
-  // The volume is affine along the segment: it vanishes at t = va / (va - vb).
-  const mpq_class t = va / (va - vb);
-  return {ea.x + t * (eb.x - ea.x), ea.y + t * (eb.y - ea.y), ea.z + t * (eb.z - ea.z)};
+  // The side is affine along the segment; it vanishes at
+  // (sa b - sb a) / (sa b.w - sb a.w) once the factors a.w, b.w are divided out.
+  const mpz_class denominator = sa * hb.w - sb * ha.w;
+  const auto coordinate = [&](const mpz_class& xa, const mpz_class& xb) {
+    mpq_class c(sa * xb - sb * xa, denominator);
+    c.canonicalize();
+    return c;
+  };
+  return {coordinate(ha.x, hb.x), coordinate(ha.y, hb.y), coordinate(ha.z, hb.z)};
 }
 
 std::optional<ExactPoint3> intersect_segment_triangle_point(const HybridPoint& a,

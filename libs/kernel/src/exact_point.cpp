@@ -1,5 +1,7 @@
 #include <mr/kernel/exact_point.h>
 
+#include "homogeneous.h"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -12,14 +14,15 @@ namespace {
 
 bool has_even_mantissa(double d) { return (std::bit_cast<std::uint64_t>(d) & 1u) == 0; }
 
-// A point as integers (x, y, z) / w with w > 0. The orientation predicates
-// run on these: every mpq operation reduces its result by a gcd, which on
-// the long numbers of nested cut points cost most of the insertion time;
-// integer products need no reduction, and the signs are the same since
-// every denominator is positive.
-struct Homogeneous {
-  mpz_class x, y, z, w;
-};
+mpq_class determinant3(const mpq_class& ux, const mpq_class& uy, const mpq_class& uz,
+                       const mpq_class& vx, const mpq_class& vy, const mpq_class& vz,
+                       const mpq_class& wx, const mpq_class& wy, const mpq_class& wz) {
+  return ux * (vy * wz - vz * wy) + uy * (vz * wx - vx * wz) + uz * (vx * wy - vy * wx);
+}
+
+}  // namespace
+
+namespace detail {
 
 Homogeneous homogeneous(const ExactPoint3& p) {
   const mpz_class& dx = p.x.get_den();
@@ -49,13 +52,7 @@ std::array<mpz_class, 3> scaled_difference(const Homogeneous& q, const Homogeneo
   return {q.x * p.w - p.x * q.w, q.y * p.w - p.y * q.w, q.z * p.w - p.z * q.w};
 }
 
-mpq_class determinant3(const mpq_class& ux, const mpq_class& uy, const mpq_class& uz,
-                       const mpq_class& vx, const mpq_class& vy, const mpq_class& vz,
-                       const mpq_class& wx, const mpq_class& wy, const mpq_class& wz) {
-  return ux * (vy * wz - vz * wy) + uy * (vz * wx - vx * wz) + uz * (vx * wy - vy * wx);
-}
-
-}  // namespace
+}  // namespace detail
 
 double round_to_nearest(const mpq_class& q) {
   const double truncated = q.get_d();  // rounds toward zero
@@ -93,10 +90,10 @@ std::size_t bit_size(const ExactPoint3& p) {
 
 int orient3d(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c,
              const ExactPoint3& d) {
-  const Homogeneous ha = homogeneous(a);
-  const auto u = scaled_difference(homogeneous(b), ha);
-  const auto v = scaled_difference(homogeneous(c), ha);
-  const auto w = scaled_difference(homogeneous(d), ha);
+  const detail::Homogeneous ha = detail::homogeneous(a);
+  const auto u = detail::scaled_difference(detail::homogeneous(b), ha);
+  const auto v = detail::scaled_difference(detail::homogeneous(c), ha);
+  const auto w = detail::scaled_difference(detail::homogeneous(d), ha);
   const mpz_class det = u[0] * (v[1] * w[2] - v[2] * w[1]) + u[1] * (v[2] * w[0] - v[0] * w[2]) +
                         u[2] * (v[0] * w[1] - v[1] * w[0]);
   return sgn(det);
@@ -106,9 +103,9 @@ int orient2d_projected(const ExactPoint3& a, const ExactPoint3& b, const ExactPo
                        int axis) {
   const int i = axis == 0 ? 1 : 0;
   const int j = axis == 2 ? 1 : 2;
-  const Homogeneous ha = homogeneous(a);
-  const auto u = scaled_difference(homogeneous(b), ha);
-  const auto v = scaled_difference(homogeneous(c), ha);
+  const detail::Homogeneous ha = detail::homogeneous(a);
+  const auto u = detail::scaled_difference(detail::homogeneous(b), ha);
+  const auto v = detail::scaled_difference(detail::homogeneous(c), ha);
   const mpz_class det = u[i] * v[j] - u[j] * v[i];
   return sgn(det);
 }
