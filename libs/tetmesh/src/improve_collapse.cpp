@@ -144,6 +144,18 @@ bool surface_allows(const std::vector<TrackedFace>& at_u, const std::vector<Trac
   return true;
 }
 
+// Tracked edges with one face are open boundary: those u's collapse moves
+// onto v must stay near the input's open boundary, not only near its surface.
+bool open_edges_inside(const Workspace& ws, const std::vector<TrackedFace>& at_u, Index u, Index v) {
+  if (ws.open_boundary == nullptr) return true;
+  const Vec3d& pv = ws.mesh.position(v).approx;
+  for (const Index x : surface_neighbours(at_u, u)) {
+    if (x == v || faces_on_edge(at_u, u, x) != 1) continue;
+    if (!ws.open_boundary->is_inside(pv, ws.mesh.position(x).approx)) return false;
+  }
+  return true;
+}
+
 bool new_edges_short_enough(const Workspace& ws, const Link& lu, const Link& lv, Index u, Index v) {
   const Vec3d& pv = ws.mesh.position(v).approx;
   for (const Index x : lu.vertices) {
@@ -196,6 +208,7 @@ bool try_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal) {
       moved_faces.push_back(corners);
     }
     if (!faces_inside(ws, moved_faces)) return false;
+    if (!open_edges_inside(ws, at_u, u, v)) return false;
   }
 
   replace_tets(ws, star_u, new_tets, [u, v](const FaceKey& face, std::vector<FaceKey>& parents) {

@@ -87,11 +87,12 @@ std::string pass_summary(int pass, const ImproveStats& s, double max_energy) {
   return text.str();
 }
 
-ImproveStats run_passes(Mesh& mesh, const envelope::Envelope& envelope, const ImproveOptions& options,
+ImproveStats run_passes(Mesh& mesh, const SurfaceBounds& bounds, const ImproveOptions& options,
                         const Logger& logger) {
   ImproveStats stats;
   stats.before = measure_quality(mesh);
-  Workspace ws(mesh, &envelope, options.target_edge_length, options.stop_energy);
+  Workspace ws(mesh, &bounds.surface, options.target_edge_length, options.stop_energy);
+  ws.open_boundary = bounds.open_boundary;
   double max_energy = stats.before.max_amips;
   int refinements = 0;
   for (int pass = 0; pass < options.max_passes && max_energy >= options.stop_energy; ++pass) {
@@ -165,12 +166,12 @@ QualitySummary measure_quality(const Mesh& mesh) {
   return out;
 }
 
-ImproveStats improve_mesh(Mesh& mesh, const envelope::Envelope& envelope, const ImproveOptions& options,
+ImproveStats improve_mesh(Mesh& mesh, const SurfaceBounds& bounds, const ImproveOptions& options,
                           const Logger& logger) {
   validate(options);
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   ImproveStats stats;
-  arena.execute([&] { stats = run_passes(mesh, envelope, options, logger); });
+  arena.execute([&] { stats = run_passes(mesh, bounds, options, logger); });
   std::ostringstream text;
   text << "improve: " << stats.passes << " passes, max AMIPS " << stats.before.max_amips << " -> "
        << stats.after.max_amips << ", min dihedral " << stats.before.min_dihedral_deg << " -> "

@@ -34,6 +34,8 @@ class Workspace {
 
   Mesh& mesh;
   const envelope::Envelope* envelope;
+  /// The input's open boundary edges (SurfaceBounds), or null.
+  const envelope::Envelope* open_boundary = nullptr;
   double target_edge_length;
   double stop_energy;
   /// Per vertex slot: scale of the local target length (1: the global target).

@@ -81,10 +81,11 @@ void smooth_neighbours(Workspace& ws, Index v) {
 
 namespace mr::tetmesh {
 
-RoundingStats round_vertices(Mesh& mesh, const envelope::Envelope& envelope, const Logger& logger) {
+RoundingStats round_vertices(Mesh& mesh, const SurfaceBounds& bounds, const Logger& logger) {
   using namespace improve_detail;
   constexpr int kRounds = 4;
-  Workspace ws(mesh, &envelope, 1.0, 10.0);
+  Workspace ws(mesh, &bounds.surface, 1.0, 10.0);
+  ws.open_boundary = bounds.open_boundary;
   RoundingStats stats;
   std::vector<Index> rational;
   for (Index v = 0; v < mesh.vertex_slots(); ++v) {

@@ -6,6 +6,7 @@
 #include <mr/core/errors.h>
 #include <mr/core/orientation.h>
 #include <mr/core/thicken.h>
+#include <mr/core/weld.h>
 #include <mr/envelope/envelope.h>
 #include <mr/simplify/simplify.h>
 #include <mr/spatial/aabb_tree.h>
@@ -18,6 +19,7 @@
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 
@@ -63,6 +65,30 @@ std::unique_ptr<envelope::Envelope> input_envelope(const TriangleSoup& input, co
   return envelope::make_envelope(input, envelope_options);
 }
 
+// The envelope of the input's open boundary: its edges used by one triangle
+// (vertices welded when bit-identical), each as a degenerate triangle, whose
+// distance is the distance to the segment. Null when the input is closed.
+std::unique_ptr<envelope::Envelope> open_boundary_envelope(const TriangleSoup& input,
+                                                           const DerivedParameters& derived) {
+  const TriangleSoup welded = weld_identical_vertices(input);
+  std::vector<std::array<Index, 2>> edges;
+  for (const Triangle& t : welded.triangles) {
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue;
+    for (int i = 0; i < 3; ++i) edges.push_back({std::min(t[i], t[(i + 1) % 3]), std::max(t[i], t[(i + 1) % 3])});
+  }
+  std::sort(edges.begin(), edges.end());
+  TriangleSoup boundary;
+  boundary.positions = welded.positions;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) boundary.triangles.push_back({edges[i][0], edges[i][1], edges[i][1]});
+    i = j;
+  }
+  if (boundary.triangles.empty()) return nullptr;
+  return input_envelope(boundary, derived);
+}
+
 std::size_t count_rational(const Mesh& mesh) {
   std::size_t count = 0;
   for (Index v = 0; v < mesh.vertex_slots(); ++v) count += mesh.vertex_alive(v) && mesh.position(v).is_exact();
@@ -77,7 +103,7 @@ struct Embedding {
 
 // Background mesh, insertion of every triangle not skipped, and rounding of
 // the cut points as far as local moves inside the envelope allow.
-Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, const envelope::Envelope& envelope,
+Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, const SurfaceBounds& bounds,
                      const DerivedParameters& derived, const PipelineOptions& options, PipelineStats& stats,
                      const Logger& logger) {
   BackgroundMesh background;
@@ -112,7 +138,7 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
   std::size_t remaining = rounding.remaining;
   if (remaining != 0) {
     // Moves within the envelope: to nearby doubles, or onto any neighbour.
-    const RoundingStats moved = round_vertices(mesh, envelope, logger);
+    const RoundingStats moved = round_vertices(mesh, bounds, logger);
     count(timer, "moved", moved.moved + moved.collapsed);
     remaining = moved.remaining;
   }
@@ -120,7 +146,7 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
   return embedding;
 }
 
-void improve(Mesh& mesh, const envelope::Envelope& envelope, const DerivedParameters& derived, int max_passes,
+void improve(Mesh& mesh, const SurfaceBounds& bounds, const DerivedParameters& derived, int max_passes,
              const PipelineOptions& options, PipelineStats& stats, const Logger& logger) {
   StageTimer timer(stats, "improve", logger);
   ImproveOptions improve_options;
@@ -128,7 +154,7 @@ void improve(Mesh& mesh, const envelope::Envelope& envelope, const DerivedParame
   improve_options.stop_energy = options.tetrahedralize.stop_energy;
   improve_options.max_passes = max_passes;
   improve_options.threads = options.tetrahedralize.threads;
-  const ImproveStats improved = improve_mesh(mesh, envelope, improve_options, logger);
+  const ImproveStats improved = improve_mesh(mesh, bounds, improve_options, logger);
   count(timer, "passes", static_cast<std::size_t>(improved.passes));
   count(timer, "splits", improved.splits);
   count(timer, "collapses", improved.collapses);
@@ -136,7 +162,7 @@ void improve(Mesh& mesh, const envelope::Envelope& envelope, const DerivedParame
   count(timer, "smoothing_moves", improved.smoothing_moves);
   count(timer, "rational_vertices", improved.rational_vertices);
   if (improved.rational_vertices != 0) {
-    const RoundingStats rounded = round_vertices(mesh, envelope, logger);
+    const RoundingStats rounded = round_vertices(mesh, bounds, logger);
     count(timer, "rational_vertices_after_rounding", rounded.remaining);
   }
 }
@@ -146,17 +172,17 @@ void improve(Mesh& mesh, const envelope::Envelope& envelope, const DerivedParame
 // rational through improvement, which usually frees them by moving their
 // neighbours; only when some are still stuck is the embedding redone
 // without the triangles that created them.
-Mesh embed_and_improve(const TriangleSoup& surface, const envelope::Envelope& envelope,
+Mesh embed_and_improve(const TriangleSoup& surface, const SurfaceBounds& bounds,
                        const DerivedParameters& derived, const PipelineOptions& options, PipelineStats& stats,
                        const Logger& logger) {
   std::vector<char> skip(surface.triangles.size(), 0);
   for (int attempt = 1;; ++attempt) {
-    Embedding embedding = embed_once(surface, skip, envelope, derived, options, stats, logger);
+    Embedding embedding = embed_once(surface, skip, bounds, derived, options, stats, logger);
     Mesh& mesh = embedding.mesh;
     if (options.improve) {
-      improve(mesh, envelope, derived, options.tetrahedralize.max_passes, options, stats, logger);
+      improve(mesh, bounds, derived, options.tetrahedralize.max_passes, options, stats, logger);
     } else if (count_rational(mesh) != 0) {
-      improve(mesh, envelope, derived, kRoundingRescuePasses, options, stats, logger);
+      improve(mesh, bounds, derived, kRoundingRescuePasses, options, stats, logger);
     }
     const std::size_t remaining = count_rational(mesh);
     if (remaining == 0) return std::move(mesh);
@@ -203,7 +229,8 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
   const TriangleSoup surface = simplified_input(oriented, options, derived, result.stats, logger);
 
   const std::unique_ptr<envelope::Envelope> envelope = input_envelope(input, derived);
-  Mesh mesh = embed_and_improve(surface, *envelope, derived, options, result.stats, logger);
+  const std::unique_ptr<envelope::Envelope> open_boundary = open_boundary_envelope(input, derived);
+  Mesh mesh = embed_and_improve(surface, {*envelope, open_boundary.get()}, derived, options, result.stats, logger);
 
   std::vector<char> keep;
   {

@@ -70,17 +70,30 @@ struct RoundingStats {
   std::size_t remaining = 0;     ///< still rational
 };
 
+/// What the tracked surface must stay near (the envelopes are not owned).
+struct SurfaceBounds {
+  SurfaceBounds(const envelope::Envelope& surface_, const envelope::Envelope* open_boundary_ = nullptr)  // NOLINT
+      : surface(surface_), open_boundary(open_boundary_) {}
+  /// Every tracked face stays inside.
+  const envelope::Envelope& surface;
+  /// The envelope of the input's open boundary edges (seed section 3.4,
+  /// "Open Boundaries"), null when it has none: a tracked edge with one
+  /// face stays inside it, so that a boundary cannot drift across the
+  /// surface while its faces stay in the surface envelope.
+  const envelope::Envelope* open_boundary;
+};
+
 /// Improves `mesh` in place. Precondition: find_mesh_inconsistency(mesh) == ""
-/// and every tracked face inside `envelope`. Throws mr::UsageError on a
+/// and every tracked face inside `bounds.surface`. Throws mr::UsageError on a
 /// non-positive target edge length or stop energy.
-ImproveStats improve_mesh(Mesh& mesh, const envelope::Envelope& envelope,
+ImproveStats improve_mesh(Mesh& mesh, const SurfaceBounds& bounds,
                           const ImproveOptions& options, const Logger& logger = {});
 
 /// Rounds every rational vertex to doubles where no incident tet inverts; a
 /// vertex that cannot be rounded in place is moved to a nearby double
 /// position or collapsed onto a neighbour (same checks as improve_mesh),
 /// then retried. `remaining` says how many are left rational.
-RoundingStats round_vertices(Mesh& mesh, const envelope::Envelope& envelope,
+RoundingStats round_vertices(Mesh& mesh, const SurfaceBounds& bounds,
                              const Logger& logger = {});
 
 /// Quality of the live tets (parallel, deterministic).
