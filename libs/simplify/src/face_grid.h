@@ -1,6 +1,8 @@
 #pragma once
-// A uniform hash grid of face bounding boxes that grows as faces change: a
-// changed face is inserted again and its old entries stay behind. Queries
+// A uniform hash grid of face bounding boxes: a changed face is inserted
+// again and its old entries stay behind until they outnumber the current
+// ones, when the grid is rebuilt from the current boxes (on a 516k-face scan
+// the stale entries made queries sort long lists most of the time). Queries
 // return a superset of the faces whose current box overlaps the query box, as
 // long as every face was (re)inserted with its current box; callers test the
 // candidates against current geometry and skip deleted faces.
@@ -27,6 +29,13 @@ class FaceGrid {
   // Faces spanning more cells than this go to a list every query visits.
   static constexpr std::int64_t kMaxCellsPerFace = 64;
 
+  struct Box {
+    Vec3d lo, hi;
+    std::int64_t cells = 0;  ///< cells the box spans; 0: never inserted
+  };
+
+  void add_entries(std::uint32_t face, const Box& box);
+  void rebuild();
   std::array<std::int64_t, 3> cell_of(const Vec3d& p) const;
   static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z);
   void collect_from_all_cells(const std::array<std::int64_t, 3>& a, const std::array<std::int64_t, 3>& b,
@@ -37,6 +46,9 @@ class FaceGrid {
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
   std::vector<std::uint32_t> oversize_;
   std::vector<std::uint8_t> in_oversize_;
+  std::vector<Box> boxes_;        ///< per face, its current box
+  std::int64_t entries_ = 0;      ///< in cells_, stale ones included
+  std::int64_t live_entries_ = 0; ///< of the current boxes
 };
 
 }  // namespace mr::simplify
