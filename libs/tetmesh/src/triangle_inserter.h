@@ -60,7 +60,7 @@ class TriangleInserter {
 
   static constexpr std::uint32_t kNoCreator = std::numeric_limits<std::uint32_t>::max();
   /// Cut points longer than this (bit_size) are rounded during insertion.
-  static constexpr std::size_t kMaxExactBits = 1024;
+  static constexpr std::size_t kMaxExactBits = 4096;
 
  private:
   using Ids = std::vector<std::uint32_t>;

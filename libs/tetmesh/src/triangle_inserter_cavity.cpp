@@ -134,7 +134,7 @@ void TriangleInserter::rebuild_cavity() {
 // several times as long as theirs, and chains of such cuts (faces repeated
 // or crossing many times, as in CAD soups) grow them into thousands of bits
 // that make every later predicate slow (trimesh/chair_model spent most of
-// its time multiplying them). Points past kMaxExactBits are rounded at once
+// its time multiplying them). Points past kMaxExactBits (4096) are rounded at once
 // when no tet around them inverts; the others wait for the rounding stage
 // (rounding every point at once left knots, see rounding_stage.h).
 void TriangleInserter::round_oversized_points(std::span<const Index> created) {
