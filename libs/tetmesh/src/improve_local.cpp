@@ -134,17 +134,22 @@ bool faces_inside(const Workspace& ws, std::span<const FaceCorners> faces, Overr
 }
 
 std::vector<TrackedFace> tracked_faces(const Mesh& mesh, std::span<const Index> tets) {
-  std::vector<TrackedFace> faces;
+  // Each face is seen from both its tets: keep the first sighting of each
+  // key (sorted, then unique: a search per face was quadratic in big stars).
+  std::vector<std::pair<FaceKey, std::pair<Index, int>>> seen;
   for (const Index t : tets) {
     for (int f = 0; f < 4; ++f) {
-      if (!mesh.is_surface_face(t, f)) continue;
-      const FaceKey key = face_key(mesh.face_vertices(t, f));
-      const bool seen = std::any_of(faces.begin(), faces.end(),
-                                    [&](const TrackedFace& g) { return g.key == key; });
-      if (seen) continue;
-      const auto ids = mesh.surface_ids(t, f);
-      faces.push_back({key, std::vector<std::uint32_t>(ids.begin(), ids.end())});
+      if (mesh.is_surface_face(t, f)) seen.push_back({face_key(mesh.face_vertices(t, f)), {t, f}});
     }
+  }
+  std::stable_sort(seen.begin(), seen.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  seen.erase(std::unique(seen.begin(), seen.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+             seen.end());
+  std::vector<TrackedFace> faces;
+  faces.reserve(seen.size());
+  for (const auto& [key, where] : seen) {
+    const auto ids = mesh.surface_ids(where.first, where.second);
+    faces.push_back({key, std::vector<std::uint32_t>(ids.begin(), ids.end())});
   }
   return faces;
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <string>
+#include <unordered_set>
 
 namespace mr::tetmesh {
 
@@ -26,7 +27,10 @@ std::vector<Index> tets_around_vertex(const Mesh& mesh, Index v, Index seed) {
     throw UsageError("tets_around_vertex: seed tet " + std::to_string(seed) +
                      " is not a live tet with vertex " + std::to_string(v));
   }
+  // A linear search of the star was quadratic: cut points on lines where
+  // many triangles cross have thousands of tets around them.
   std::vector<Index> star{seed};
+  std::unordered_set<Index> seen{seed};
   for (std::size_t i = 0; i < star.size(); ++i) {
     const Index t = star[i];
     const int opposite = mesh.corner_of(t, v);
@@ -34,7 +38,7 @@ std::vector<Index> tets_around_vertex(const Mesh& mesh, Index v, Index seed) {
       const Index u = mesh.neighbour(t, f);
       // Faces other than the one opposite v contain v: their neighbour is in the star.
       if (f == opposite || u == kNoTet) continue;
-      if (std::find(star.begin(), star.end(), u) == star.end()) star.push_back(u);
+      if (seen.insert(u).second) star.push_back(u);
     }
   }
   std::sort(star.begin(), star.end());
