@@ -165,7 +165,7 @@ void improve(Mesh& mesh, const SurfaceBounds& bounds, const DerivedParameters& d
 
 // Embeds the surface, improves the mesh when asked, and makes sure every
 // vertex has double coordinates. Cut points that rounding cannot place stay
-// rational through improvement, which usually frees them by moving their
+// rational through improvement, which may free them by moving their
 // neighbours; only when some are still stuck is the embedding redone
 // without the triangles that created them. The fast path (no improvement)
 // redoes it at once: two improvement passes to free the points cost more
