@@ -60,14 +60,14 @@ class Copies {
 
 InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input,
                                 std::span<const Index> input_vertex, std::span<const char> skip,
-                                const Logger& logger) {
+                                const Logger& logger, const InsertionOptions& options) {
   if (input_vertex.size() != input.positions.size()) {
     throw UsageError("insert_triangles: the vertex map does not match the input");
   }
   if (!skip.empty() && skip.size() != input.triangles.size()) {
     throw UsageError("insert_triangles: the skip list does not match the input");
   }
-  detail::TriangleInserter inserter(mesh);
+  detail::TriangleInserter inserter(mesh, options.max_exact_bits);
   Copies copies;
   InsertionStats stats;
   const std::size_t n = input.triangles.size();

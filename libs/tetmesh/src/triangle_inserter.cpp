@@ -79,7 +79,8 @@ std::optional<bool> polygon_overlaps_triangle(std::span<const Point> polygon, co
 
 }  // namespace
 
-TriangleInserter::TriangleInserter(Mesh& mesh) : mesh_(mesh) {
+TriangleInserter::TriangleInserter(Mesh& mesh, std::size_t max_exact_bits)
+    : mesh_(mesh), max_exact_bits_(max_exact_bits) {
   seed_tet_.assign(mesh.vertex_slots(), kNoTet);
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
     if (!mesh.tet_alive(t)) continue;

@@ -47,7 +47,9 @@ struct InsertionCounters {
 
 class TriangleInserter {
  public:
-  explicit TriangleInserter(Mesh& mesh);
+  /// Cut points longer than `max_exact_bits` (bit_size) are rounded during
+  /// insertion where nothing inverts.
+  TriangleInserter(Mesh& mesh, std::size_t max_exact_bits);
 
   /// Inserts the triangle with corners a, b, c (mesh vertices) and input id
   /// `id`. Returns false, changing nothing, when the corners are collinear.
@@ -59,8 +61,6 @@ class TriangleInserter {
   const std::vector<std::uint32_t>& creators() const { return creator_; }
 
   static constexpr std::uint32_t kNoCreator = std::numeric_limits<std::uint32_t>::max();
-  /// Cut points longer than this (bit_size) are rounded during insertion.
-  static constexpr std::size_t kMaxExactBits = 4096;
 
  private:
   using Ids = std::vector<std::uint32_t>;
@@ -111,6 +111,7 @@ class TriangleInserter {
   void stamp(std::vector<std::uint32_t>& stamps, Index t);
 
   Mesh& mesh_;
+  std::size_t max_exact_bits_;
   std::vector<Index> seed_tet_;  ///< per vertex slot, a live tet having it as a corner
   std::vector<std::uint32_t> creator_;
   InsertionCounters counters_;

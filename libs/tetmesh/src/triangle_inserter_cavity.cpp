@@ -134,14 +134,14 @@ void TriangleInserter::rebuild_cavity() {
 // several times as long as theirs, and chains of such cuts (faces repeated
 // or crossing many times, as in CAD soups) grow them into thousands of bits
 // that make every later predicate slow (trimesh/chair_model spent most of
-// its time multiplying them). Points past kMaxExactBits (4096) are rounded at once
+// its time multiplying them). Points past InsertionOptions::max_exact_bits are rounded at once
 // when no tet around them inverts; the others wait for the rounding stage
 // (rounding every point at once left knots, see rounding_stage.h).
 void TriangleInserter::round_oversized_points(std::span<const Index> created) {
   std::vector<Index> oversized;
   for (const Index v : new_vertices_) {
     const HybridPoint& p = mesh_.position(v);
-    if (p.is_exact() && bit_size(*p.exact) > kMaxExactBits) oversized.push_back(v);
+    if (p.is_exact() && bit_size(*p.exact) > max_exact_bits_) oversized.push_back(v);
   }
   if (oversized.empty()) return;
   std::sort(oversized.begin(), oversized.end());

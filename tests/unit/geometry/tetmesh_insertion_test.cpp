@@ -47,10 +47,10 @@ struct Inserted {
   InsertionStats stats;
 };
 
-Inserted insert_soup(const TriangleSoup& soup) {
+Inserted insert_soup(const TriangleSoup& soup, const InsertionOptions& options = {}) {
   const DerivedParameters derived = derive_parameters({}, soup);
   Inserted result{build_background_mesh(soup, spatial::AabbTree(soup), background_parameters(derived, 1)), {}};
-  result.stats = insert_triangles(result.background.mesh, soup, result.background.input_vertex);
+  result.stats = insert_triangles(result.background.mesh, soup, result.background.input_vertex, {}, {}, options);
   return result;
 }
 
@@ -139,10 +139,12 @@ TEST_CASE("insertion: random intersecting soups are embedded exactly", "[tetmesh
 
 TEST_CASE("insertion: cut points that grow too long are rounded at once, the embedding still exact",
           "[tetmesh][insertion]") {
-  // Many triangles through one small region: cuts of cuts of cuts, whose
-  // exact coordinates grow past TriangleInserter::kMaxExactBits.
+  // Many triangles through one region: cuts of cuts of cuts, whose exact
+  // coordinates grow past a bound set low enough for a small soup.
   const TriangleSoup soup = random_soup(7, 30);
-  const Inserted inserted = insert_soup(soup);
+  InsertionOptions options;
+  options.max_exact_bits = 1024;
+  const Inserted inserted = insert_soup(soup, options);
   INFO("rounded during insertion: " << inserted.stats.eagerly_rounded << " of " << inserted.stats.new_vertices << " rational left " << inserted.stats.rational_vertices);
   CHECK(inserted.stats.eagerly_rounded > 0);
   require_exactly_embedded(soup, inserted);

@@ -33,6 +33,13 @@ struct InsertionStats {
   static constexpr std::uint32_t kNoCreator = 0xffffffffu;
 };
 
+struct InsertionOptions {
+  /// A cut point whose exact coordinates grow past this many bits (cuts of
+  /// cuts multiply the length) is rounded as soon as its triangle is in, if
+  /// no tet around it inverts; the others wait for the rounding stage.
+  std::size_t max_exact_bits = 16384;
+};
+
 /// Inserts the triangles of `input` in order; triangle i gets id i.
 /// `input_vertex` maps input vertices to mesh vertices (BackgroundMesh).
 /// Triangles with skip[i] != 0 are left out (`skip` empty: none). Cut
@@ -40,6 +47,6 @@ struct InsertionStats {
 /// Throws mr::RunError if an internal consistency check fails.
 InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input,
                                 std::span<const Index> input_vertex, std::span<const char> skip = {},
-                                const Logger& logger = {});
+                                const Logger& logger = {}, const InsertionOptions& options = {});
 
 }  // namespace mr::tetmesh
