@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <iosfwd>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,22 @@ using ToolMain = int (*)(const std::vector<std::string>&, std::ostream&, std::os
 /// Runs a tool in-process, capturing its exit code and both streams.
 ToolRun run_tool(ToolMain tool, const std::vector<std::string>& args);
 ToolRun run_format_convert(const std::vector<std::string>& args);
+
+/// Collects everything written to std::cerr and std::clog while it lives
+/// (OpenMesh's omerr() and omlog() write to std::cerr), restoring both after.
+class CapturedStderr {
+ public:
+  CapturedStderr();
+  ~CapturedStderr();
+  CapturedStderr(const CapturedStderr&) = delete;
+  CapturedStderr& operator=(const CapturedStderr&) = delete;
+  std::string text() const { return buffer_.str(); }
+
+ private:
+  std::ostringstream buffer_;
+  std::streambuf* cerr_;
+  std::streambuf* clog_;
+};
 
 /// Signed volume enclosed by a closed, consistently oriented soup.
 double enclosed_volume(const TriangleSoup& soup);

@@ -6,6 +6,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <random>
+
 using namespace mr;
 
 TEST_CASE("soup consistency check finds bad indices and non-finite coordinates", "[core]") {
@@ -74,4 +78,52 @@ TEST_CASE("halfedge conversion reports the faces it cannot hold", "[core][openme
   const TriangleSoup back = to_soup(cube.mesh);
   CHECK(back.triangles == test::cube_soup().triangles);
   CHECK(back.positions == test::cube_soup().positions);
+}
+
+TEST_CASE("halfedge conversion writes nothing to OpenMesh's error stream", "[core][openmesh]") {
+  TriangleSoup soup;
+  for (int i = 0; i < 10; ++i) soup.positions.emplace_back(std::cos(i), std::sin(i), 0.1 * i);
+  soup.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4},  // an open fan around vertex 0
+                    {0, 5, 6},                        // a second fan at vertex 0
+                    {0, 4, 1},                        // would close the first fan: re-linking fails
+                    {0, 1, 2},                        // a duplicate: complex edge
+                    {1, 2, 7},                        // reuses halfedge 1->2: complex edge
+                    {7, 8, 9}, {8, 7, 9}, {7, 9, 8},  // two faces close a pillow, the third is a complex edge
+                    {9, 3, 8},                        // touches the closed pillow: complex vertex
+                    {5, 5, 6}};                       // a repeated index
+  const test::CapturedStderr captured;
+  const ToTriMeshResult result = to_trimesh(soup);
+  CHECK(captured.text().empty());
+  CHECK(result.rejected_triangles == std::vector<std::size_t>{4, 5, 6, 9, 10, 11});
+  CHECK(result.mesh.n_faces() + result.rejected_triangles.size() == soup.num_triangles());
+}
+
+TEST_CASE("can_add_face tells exactly which faces OpenMesh's add_face refuses", "[core][openmesh]") {
+  std::mt19937 random(7);
+  std::size_t refused = 0;
+  std::size_t disagreements = 0;
+  std::size_t log_lines = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    TriMesh mesh;
+    const int vertices = 4 + int(random() % 8);
+    std::vector<TriMesh::VertexHandle> v;
+    for (int i = 0; i < vertices; ++i) v.push_back(mesh.add_vertex(TriMesh::Point(i, 0, 0)));
+    for (int k = 0; k < 30; ++k) {
+      const auto a = v[random() % v.size()], b = v[random() % v.size()], c = v[random() % v.size()];
+      if (a == b || b == c || a == c) {
+        CHECK_FALSE(can_add_face(mesh, a, b, c));
+        continue;
+      }
+      const bool predicted = can_add_face(mesh, a, b, c);
+      const test::CapturedStderr captured;
+      const bool added = mesh.add_face(a, b, c).is_valid();
+      disagreements += predicted != added;
+      refused += !added;
+      const std::string text = captured.text();
+      log_lines += std::size_t(std::count(text.begin(), text.end(), '\n'));
+    }
+  }
+  CHECK(disagreements == 0);
+  CHECK(refused > 1000);         // all three kinds of refusal occur
+  CHECK(log_lines == refused);   // add_face logs each refusal: what to_trimesh avoids
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <iostream>
 #include <random>
 #include <sstream>
 
@@ -76,6 +77,14 @@ ToolRun run_tool(ToolMain tool, const std::vector<std::string>& args) {
   run.out = out.str();
   run.err = err.str();
   return run;
+}
+
+CapturedStderr::CapturedStderr()
+    : cerr_(std::cerr.rdbuf(buffer_.rdbuf())), clog_(std::clog.rdbuf(buffer_.rdbuf())) {}
+
+CapturedStderr::~CapturedStderr() {
+  std::cerr.rdbuf(cerr_);
+  std::clog.rdbuf(clog_);
 }
 
 ToolRun run_format_convert(const std::vector<std::string>& args) { return run_tool(tools::format_convert, args); }

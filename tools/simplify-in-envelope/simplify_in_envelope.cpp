@@ -32,7 +32,8 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       "An operation is accepted only if every changed triangle stays inside the epsilon-envelope\n"
       "of the original input, no face normal turns by more than the allowed deviation, the link\n"
       "condition holds and no new self-intersection appears (exact test). Boundaries stay within\n"
-      "epsilon of the input's boundary curve; non-manifold faces pass through unchanged.\n"
+      "epsilon of the input's boundary curve; non-manifold faces pass through unchanged;\n"
+      "copies of a face (double-sided surfaces) are simplified as one and all written out.\n"
       "The output is the same for any thread count.";
   auto& s = o.simplify;
   spec.options = {
@@ -61,6 +62,7 @@ nlohmann::json make_stats(const ToolOptions& o, const TriangleSoup& input, const
   return {{"faces_before", r.faces_before},
           {"faces_after", r.faces_after},
           {"kept_aside_faces", r.kept_aside_faces},
+          {"duplicate_faces", r.duplicate_faces},
           {"locked_vertices", r.locked_vertices},
           {"collapses", r.collapses},
           {"flips", r.flips},

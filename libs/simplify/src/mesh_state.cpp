@@ -9,18 +9,7 @@ namespace mr::simplify {
 MeshState::MeshState(const TriangleSoup& input, const TriangleSoup& welded,
                      const DerivedTolerances& tolerances)
     : tolerances_(tolerances) {
-  ToTriMeshResult converted = to_trimesh(welded);
-  mesh_ = std::move(converted.mesh);
-  mesh_.request_vertex_status();
-  mesh_.request_edge_status();
-  mesh_.request_halfedge_status();
-  mesh_.request_face_status();
-  live_faces_ = mesh_.n_faces();
-  for (std::size_t f : converted.rejected_triangles) {
-    const Triangle& t = welded.triangles[f];
-    kept_aside_triangles_.push_back(t);
-    kept_aside_.push_back({welded.positions[t[0]], welded.positions[t[1]], welded.positions[t[2]]});
-  }
+  build_mesh(welded);
   lock_non_manifold_vertices();
   envelope::EnvelopeOptions envelope_options;
   envelope_options.epsilon = tolerances_.epsilon;
@@ -30,6 +19,78 @@ MeshState::MeshState(const TriangleSoup& input, const TriangleSoup& welded,
   build_boundary_envelope();
   build_grid();
   build_quadrics();
+}
+
+// The halfedge mesh of the faces OpenMesh can hold; the others are kept aside.
+// Copies of one triangle (the same three vertices, either orientation: a
+// double-sided sheet, a face written twice) become one face that remembers
+// how often each orientation occurs, so a soup of double-sided faces still
+// has a manifold part to simplify. A face the halfedge structure refuses in
+// its own orientation is tried reversed (orientation is restored on output).
+// add_face is only called with faces can_add_face accepts: OpenMesh logs
+// every face it refuses to std::cerr.
+void MeshState::build_mesh(const TriangleSoup& welded) {
+  const std::size_t n = welded.triangles.size();
+  mesh_.reserve(welded.positions.size(), 3 * n / 2, n);
+  for (const Vec3d& p : welded.positions) mesh_.add_vertex(TriMesh::Point(p.x(), p.y(), p.z()));
+  mesh_.request_vertex_status();
+  mesh_.request_edge_status();
+  mesh_.request_halfedge_status();
+  mesh_.request_face_status();
+
+  // Group copies: sort by the sorted vertex triple, ties by input order, so
+  // each group starts with its first occurrence.
+  std::vector<std::pair<Triangle, std::size_t>> keys;
+  keys.reserve(n);
+  for (std::size_t f = 0; f < n; ++f) {
+    Triangle key = welded.triangles[f];
+    std::sort(key.begin(), key.end());
+    keys.emplace_back(key, f);
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::size_t> first(n);  // per input face: the first face of its group
+  for (std::size_t k = 0; k < n; ++k)
+    first[keys[k].second] = k > 0 && keys[k].first == keys[k - 1].first ? first[keys[k - 1].second] : keys[k].second;
+  auto same_orientation = [](const Triangle& a, const Triangle& b) {
+    for (int r = 0; r < 3; ++r)
+      if (a[0] == b[r] && a[1] == b[(r + 1) % 3] && a[2] == b[(r + 2) % 3]) return true;
+    return false;
+  };
+
+  constexpr std::size_t kNone = std::size_t(-1);
+  std::vector<std::size_t> face_of(n, kNone);  // per group's first face: its mesh face, if any
+  std::vector<std::uint8_t> reversed(n, 0);    // per group's first face: added reversed
+  for (std::size_t f = 0; f < n; ++f) {
+    const Triangle& t = welded.triangles[f];
+    const std::size_t g = first[f];
+    if (g != f) {  // a copy of an earlier face: counted with it, or kept aside with it
+      if (face_of[g] == kNone) {
+        kept_aside_triangles_.push_back(t);
+        continue;
+      }
+      ++duplicate_faces_;
+      Copies& c = copies_[face_of[g]];
+      (same_orientation(t, welded.triangles[g]) != bool(reversed[g]) ? c.along : c.against) += 1;
+      continue;
+    }
+    const TriMesh::VertexHandle a{static_cast<int>(t[0])}, b{static_cast<int>(t[1])}, c{static_cast<int>(t[2])};
+    TriMesh::FaceHandle added;
+    if (can_add_face(mesh_, a, b, c)) {
+      added = mesh_.add_face(a, b, c);
+    } else if (can_add_face(mesh_, a, c, b)) {
+      added = mesh_.add_face(a, c, b);
+      reversed[f] = 1;
+    }
+    if (!added.is_valid()) {
+      kept_aside_triangles_.push_back(t);
+      continue;
+    }
+    face_of[f] = static_cast<std::size_t>(added.idx());
+    copies_.push_back(reversed[f] ? Copies{0, 1, true} : Copies{1, 0, false});
+  }
+  for (const Copies& c : copies_) live_faces_ += c.count();
+  for (const Triangle& t : kept_aside_triangles_)
+    kept_aside_.push_back({welded.positions[t[0]], welded.positions[t[1]], welded.positions[t[2]]});
 }
 
 std::size_t MeshState::locked_vertices() const {
@@ -124,11 +185,26 @@ void MeshState::build_quadrics() {
   }
 }
 
+// All faces around v occur equally often in the output, in the same
+// orientations. A collapse rewrites only the faces around v0, so requiring
+// this keeps every region of doubled (or flipped) faces covering what it
+// covered: the lines between such regions stay where they are.
+bool MeshState::same_copies_around(TriMesh::VertexHandle v) const {
+  const Copies* first = nullptr;
+  for (auto f : mesh_.vf_range(v)) {
+    const Copies& c = copies_[f.idx()];
+    if (!first) first = &c;
+    else if (!(c == *first)) return false;
+  }
+  return true;
+}
+
 bool MeshState::is_collapse_candidate(TriMesh::HalfedgeHandle h) const {
   if (mesh_.status(mesh_.edge_handle(h)).deleted()) return false;
   const auto v0 = mesh_.from_vertex_handle(h);
   if (locked_[v0.idx()]) return false;
-  return !mesh_.is_boundary(v0) || mesh_.is_boundary(mesh_.edge_handle(h));
+  if (mesh_.is_boundary(v0) && !mesh_.is_boundary(mesh_.edge_handle(h))) return false;
+  return same_copies_around(v0);
 }
 
 double MeshState::collapse_cost(TriMesh::HalfedgeHandle h) const {
@@ -143,7 +219,9 @@ double MeshState::collapse_cost(TriMesh::HalfedgeHandle h) const {
 void MeshState::collapse(TriMesh::HalfedgeHandle h) {
   const auto v0 = mesh_.from_vertex_handle(h);
   const auto v1 = mesh_.to_vertex_handle(h);
-  live_faces_ -= mesh_.is_boundary(mesh_.edge_handle(h)) ? 1 : 2;
+  const TriMesh::FaceHandle gone[2] = {mesh_.face_handle(h), mesh_.opposite_face_handle(h)};
+  for (const TriMesh::FaceHandle f : gone)
+    if (f.is_valid()) live_faces_ -= copies_[f.idx()].count();
   quadrics_[v1.idx()] += quadrics_[v0.idx()];
   mesh_.collapse(h);
   for (auto f : mesh_.vf_range(v1)) insert_into_grid(f);
@@ -171,7 +249,10 @@ TriangleSoup MeshState::to_output() const {
     Triangle t{};
     int k = 0;
     for (auto v : mesh_.fv_range(f)) t[k++] = output_index(v.idx());
-    soup.triangles.push_back(t);
+    const Copies& c = copies_[f.idx()];
+    const Triangle r{t[0], t[2], t[1]};
+    soup.triangles.insert(soup.triangles.end(), c.against_first ? c.against : c.along, c.against_first ? r : t);
+    soup.triangles.insert(soup.triangles.end(), c.against_first ? c.along : c.against, c.against_first ? t : r);
   }
   for (const Triangle& t : kept_aside_triangles_)
     soup.triangles.push_back({output_index(int(t[0])), output_index(int(t[1])), output_index(int(t[2]))});

@@ -1,6 +1,6 @@
 #pragma once
 // The working state of one simplification: the halfedge mesh of the manifold
-// part, which vertices must not move, the envelopes of the original input and
+// part (copies of one triangle merged into one face that remembers them), which vertices must not move, the envelopes of the original input and
 // of its boundary curve, a grid of current faces (for the exact
 // self-intersection test) and per-vertex quadrics (for the collapse cost).
 // Checks are const and may run on many threads at once; operations are not.
@@ -38,7 +38,9 @@ class MeshState {
   TriMesh& mesh() { return mesh_; }
   const TriMesh& mesh() const { return mesh_; }
   std::size_t kept_aside_faces() const { return kept_aside_.size(); }
+  std::size_t duplicate_faces() const { return duplicate_faces_; }
   std::size_t locked_vertices() const;
+  /// Output faces: the halfedge mesh's with their copies, and the kept-aside ones.
   std::size_t face_count() const { return live_faces_ + kept_aside_.size(); }
 
   /// Whether halfedge h (v0 -> v1) may ever be collapsed, and at what cost.
@@ -62,6 +64,17 @@ class MeshState {
   TriangleSoup to_output() const;
 
  private:
+  /// How often a face of the halfedge mesh occurs in the output: copies of
+  /// one input triangle (the same three vertices) share one face, in either
+  /// orientation.
+  struct Copies {
+    std::uint32_t along = 1;     ///< with the face's halfedge orientation
+    std::uint32_t against = 0;   ///< reversed
+    bool against_first = false;  ///< the input's first copy is reversed: written first
+    std::size_t count() const { return std::size_t(along) + against; }
+    bool operator==(const Copies& o) const { return along == o.along && against == o.against; }
+  };
+
   struct NewFace {
     Corners corners;
     Vec3d old_normal;             // of the face it replaces (zero if none or degenerate)
@@ -69,7 +82,9 @@ class MeshState {
 
   Vec3d point(TriMesh::VertexHandle v) const;
   Corners corners(TriMesh::FaceHandle f) const;
+  void build_mesh(const TriangleSoup& welded);
   void lock_non_manifold_vertices();
+  bool same_copies_around(TriMesh::VertexHandle v) const;
   void build_boundary_envelope();
   void build_grid();
   void build_quadrics();
@@ -90,6 +105,8 @@ class MeshState {
   DerivedTolerances tolerances_;
   std::vector<Corners> kept_aside_;               // corners of faces OpenMesh rejected
   std::vector<Triangle> kept_aside_triangles_;    // their welded indices
+  std::vector<Copies> copies_;                    // per mesh face
+  std::size_t duplicate_faces_ = 0;               // input faces that share a mesh face with an earlier one
   std::vector<std::uint8_t> locked_;              // per vertex: never moved or flipped around
   std::unique_ptr<envelope::Envelope> envelope_;
   std::unique_ptr<envelope::Envelope> fine_envelope_;  // stage 2: asked only where envelope_ refuses

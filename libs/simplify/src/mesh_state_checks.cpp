@@ -263,6 +263,7 @@ bool MeshState::flip_improves_locally(TriMesh::EdgeHandle e) const {
   if (mesh_.status(e).deleted() || mesh_.is_boundary(e)) return false;
   const auto h0 = mesh_.halfedge_handle(e, 0);
   if (locked_[mesh_.from_vertex_handle(h0).idx()] && locked_[mesh_.to_vertex_handle(h0).idx()]) return false;
+  if (!(copies_[mesh_.face_handle(h0).idx()] == copies_[mesh_.opposite_face_handle(h0).idx()])) return false;
   const std::vector<NewFace> after = faces_after_flip(e);
   const double before_angle = std::min(smallest_angle(corners(mesh_.face_handle(h0))),
                                        smallest_angle(corners(mesh_.opposite_face_handle(h0))));

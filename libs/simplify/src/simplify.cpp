@@ -44,6 +44,7 @@ SimplifyResult run(const TriangleSoup& surface, const TriangleSoup& reference, c
   auto start = std::chrono::steady_clock::now();
   MeshState state(reference, weld_identical_vertices(surface), tolerances);
   result.kept_aside_faces = state.kept_aside_faces();
+  result.duplicate_faces = state.duplicate_faces();
   result.locked_vertices = state.locked_vertices();
   result.seconds_setup = seconds_since(start);
 

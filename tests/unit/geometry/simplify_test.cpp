@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <fstream>
 #include <map>
 #include <set>
@@ -148,6 +149,52 @@ bool has_face_at(const TriangleSoup& soup, const std::array<Vec3d, 3>& corners) 
   return false;
 }
 
+
+// Each face of `soup` as its sorted vertex triple with its orientation
+// (+1 for the first orientation seen of that triple, -1 for the reverse).
+std::map<std::array<Index, 3>, std::pair<int, int>> face_orientations(const TriangleSoup& soup) {
+  std::map<std::array<Index, 3>, std::pair<int, int>> counts;  // (as first seen, reversed)
+  std::map<std::array<Index, 3>, mr::Triangle> first;
+  for (const auto& t : soup.triangles) {
+    std::array<Index, 3> key{t[0], t[1], t[2]};
+    std::sort(key.begin(), key.end());
+    const auto [it, inserted] = first.try_emplace(key, t);
+    bool same = false;
+    for (int r = 0; r < 3; ++r)
+      same = same || (t[0] == it->second[r] && t[1] == it->second[(r + 1) % 3] && t[2] == it->second[(r + 2) % 3]);
+    (same ? counts[key].first : counts[key].second) += 1;
+  }
+  return counts;
+}
+
+// The soup with every face kept once (its first occurrence) and faces with a
+// repeated index dropped.
+TriangleSoup without_copies(const TriangleSoup& soup) {
+  TriangleSoup out;
+  out.positions = soup.positions;
+  std::set<std::array<Index, 3>> seen;
+  for (const auto& t : soup.triangles) {
+    std::array<Index, 3> key{t[0], t[1], t[2]};
+    std::sort(key.begin(), key.end());
+    if (key[0] == key[1] || key[1] == key[2]) continue;
+    if (seen.insert(key).second) out.triangles.push_back(t);
+  }
+  return out;
+}
+
+int count_faces_at(const TriangleSoup& soup, const std::array<Vec3d, 3>& corners) {
+  int count = 0;
+  for (const auto& t : soup.triangles) {
+    const std::array<Vec3d, 3> c{soup.positions[t[0]], soup.positions[t[1]], soup.positions[t[2]]};
+    for (int r = 0; r < 3; ++r)
+      if (c[r] == corners[0] && c[(r + 1) % 3] == corners[1] && c[(r + 2) % 3] == corners[2]) {
+        ++count;
+        break;
+      }
+  }
+  return count;
+}
+
 }  // namespace
 
 TEST_CASE("a finely tessellated plane collapses to a few triangles with its boundary kept", "[simplify]") {
@@ -240,6 +287,121 @@ TEST_CASE("non-manifold faces pass through and stay attached", "[simplify]") {
   CHECK(mr::check::one_sided_distance(result.soup, input).max <= result.epsilon);
 }
 
+TEST_CASE("a non-manifold soup goes through without a word from OpenMesh", "[simplify]") {
+  // Two spheres touching at one vertex p (the second is the first mirrored
+  // through p). Face order: the first sphere without one face at p, then the
+  // second, then that face. Closing either fan at p while the other one is
+  // open is a face OpenMesh's add_face refuses ("patch re-linking failed"),
+  // which it logs to std::cerr.
+  const TriangleSoup sphere = icosphere(3);
+  const Index apex = 0;
+  const Vec3d p = sphere.positions[apex];
+  TriangleSoup input = sphere;
+  std::vector<mr::Triangle> first_at_apex;
+  input.triangles.clear();
+  for (const auto& t : sphere.triangles) {
+    const bool at_apex = t[0] == apex || t[1] == apex || t[2] == apex;
+    (at_apex && first_at_apex.empty() ? first_at_apex : input.triangles).push_back(t);
+  }
+  const auto offset = Index(input.positions.size());
+  for (const Vec3d& q : sphere.positions) input.positions.push_back(2.0 * p - q);
+  for (const auto& t : sphere.triangles) input.triangles.push_back({t[0] + offset, t[2] + offset, t[1] + offset});
+  input.triangles.push_back(first_at_apex.front());
+  REQUIRE(input.positions[apex + offset] == p);
+  const auto before = mr::check::check_surface(input);
+  REQUIRE(before.nonmanifold_vertices == 1);  // p, once bit-identical vertices are welded
+
+  SimplifyOptions options;
+  options.epsilon_rel = 5e-3;
+  const mr::test::CapturedStderr captured;
+  const auto result = simplify_in_envelope(input, options);
+  CHECK(captured.text().empty());
+  INFO("faces after: " << result.faces_after << ", kept aside: " << result.kept_aside_faces);
+  CHECK(result.kept_aside_faces > 0);
+  CHECK(result.faces_after < input.triangles.size() / 3);
+  // Both spheres still meet at p, and only there.
+  const auto after = mr::check::check_surface(result.soup);
+  CHECK(after.nonmanifold_vertices == 1);
+  CHECK(after.nonmanifold_edges == 0);
+  CHECK(after.boundary_edges == 0);
+  CHECK(after.components == 1);
+  CHECK(after.self_intersecting_pairs == 0);
+  CHECK(after.volume > 0.9 * 2 * mr::test::enclosed_volume(sphere));
+  CHECK(std::count(result.soup.positions.begin(), result.soup.positions.end(), p) == 1);
+  CHECK(mr::check::one_sided_distance(result.soup, input).max <= result.epsilon);
+  CHECK(mr::check::one_sided_distance(input, result.soup).max <= result.epsilon);
+}
+
+TEST_CASE("a double-sided surface is simplified as one sheet and stays double-sided", "[simplify]") {
+  // Every face followed by its reversed copy, as exporters write two-sided
+  // geometry. Each edge has four faces; merged per triangle, it is a sphere.
+  const TriangleSoup sphere = icosphere(4);
+  TriangleSoup input = sphere;
+  input.triangles.clear();
+  for (const auto& t : sphere.triangles) input.triangles.insert(input.triangles.end(), {t, {t[0], t[2], t[1]}});
+  const mr::test::CapturedStderr captured;
+  const auto result = simplify_in_envelope(input, {});
+  CHECK(captured.text().empty());
+  INFO("faces after: " << result.faces_after);
+  CHECK(result.duplicate_faces == sphere.triangles.size());
+  CHECK(result.kept_aside_faces == 0);
+  CHECK(result.faces_after < input.triangles.size() / 2);
+  // Still each face once in each orientation, and those faces form a sphere.
+  for (const auto& [face, count] : face_orientations(result.soup)) CHECK(count == std::make_pair(1, 1));
+  const auto sheet = mr::check::check_surface(without_copies(result.soup));
+  CHECK(sheet.closed());
+  CHECK(sheet.manifold());
+  CHECK(sheet.inconsistent_edges == 0);
+  CHECK(sheet.self_intersecting_pairs == 0);
+  CHECK(std::abs(sheet.volume) > 0.95 * mr::test::enclosed_volume(sphere));
+  CHECK(mr::check::one_sided_distance(result.soup, input).max <= result.epsilon);
+  CHECK(mr::check::one_sided_distance(input, result.soup).max <= result.epsilon);
+}
+
+TEST_CASE("duplicate and degenerate faces are kept and the surface stays closed", "[simplify]") {
+  TriangleSoup input = icosphere(3);
+  // A sliver: face (a, b, c) split at the midpoint m of a-b, and (a, b, m)
+  // closing the gap, so edge a-b has a face of (almost) zero area on one side.
+  const mr::Triangle split = input.triangles[100];
+  const Index a = split[0], b = split[1], c = split[2];
+  const auto m = Index(input.positions.size());
+  input.positions.push_back(0.5 * (input.positions[a] + input.positions[b]));
+  input.triangles[100] = {a, m, c};
+  input.triangles.push_back({m, b, c});
+  input.triangles.push_back({a, b, m});
+  // Copies: one in the same orientation, one reversed, appended at the end;
+  // and a face with a repeated index.
+  const mr::Triangle twice = input.triangles[200], reversed = input.triangles[300];
+  input.triangles.push_back(twice);
+  input.triangles.push_back({reversed[0], reversed[2], reversed[1]});
+  const mr::Triangle repeated{c, c, a};
+  input.triangles.push_back(repeated);
+  REQUIRE(mr::check::check_surface(without_copies(input)).closed());
+
+  SimplifyOptions options;
+  options.epsilon_rel = 5e-3;
+  const mr::test::CapturedStderr captured;
+  const auto result = simplify_in_envelope(input, options);
+  CHECK(captured.text().empty());
+  INFO("faces after: " << result.faces_after);
+  CHECK(result.duplicate_faces == 2);
+  CHECK(result.faces_after < input.triangles.size() / 2);
+  auto corners = [&](const mr::Triangle& t) {
+    return std::array<Vec3d, 3>{input.positions[t[0]], input.positions[t[1]], input.positions[t[2]]};
+  };
+  CHECK(count_faces_at(result.soup, corners(twice)) == 2);
+  CHECK(count_faces_at(result.soup, corners(reversed)) == 1);
+  CHECK(count_faces_at(result.soup, corners({reversed[0], reversed[2], reversed[1]})) == 1);
+  CHECK(count_faces_at(result.soup, corners(repeated)) == 1);
+  const auto surface = mr::check::check_surface(without_copies(result.soup));
+  CHECK(surface.closed());
+  CHECK(surface.manifold());
+  CHECK(surface.inconsistent_edges == 0);
+  CHECK(surface.self_intersecting_pairs == 0);
+  CHECK(mr::check::one_sided_distance(result.soup, input).max <= result.epsilon);
+  CHECK(mr::check::one_sided_distance(input, result.soup).max <= result.epsilon);
+}
+
 TEST_CASE("simplification adds no self-intersection", "[simplify]") {
   // Two grids crossing each other at right angles: the input intersects itself.
   TriangleSoup input = full_grid(12);
@@ -309,7 +471,7 @@ TEST_CASE("simplify-in-envelope runs end to end", "[simplify]") {
   CHECK(output.triangles.size() < input.triangles.size() / 2);
   std::ifstream stats_file(dir / "stats.json");
   const auto stats = nlohmann::json::parse(stats_file);
-  for (const char* key : {"faces_before", "faces_after", "epsilon_rel", "epsilon_abs", "seconds",
+  for (const char* key : {"faces_before", "faces_after", "duplicate_faces", "epsilon_rel", "epsilon_abs", "seconds",
                           "distance_to_input_max", "collapses", "flips"})
     CHECK(stats.contains(key));
   CHECK(stats["faces_before"] == input.triangles.size());

@@ -25,8 +25,14 @@ struct ToTriMeshResult {
   std::vector<std::size_t> rejected_triangles;
 };
 
+/// Whether mesh.add_face(a, b, c) would accept the face: the same tests,
+/// without changing the mesh or writing to OpenMesh's error stream. False for
+/// a repeated vertex.
+bool can_add_face(const TriMesh& mesh, TriMesh::VertexHandle a, TriMesh::VertexHandle b, TriMesh::VertexHandle c);
+
 /// Adds every vertex of the soup (isolated ones too, same indices) and every
-/// triangle OpenMesh accepts.
+/// triangle OpenMesh accepts, in order. Never calls add_face with a face it
+/// would refuse, so nothing is written to OpenMesh's error stream.
 ToTriMeshResult to_trimesh(const TriangleSoup& soup);
 
 /// Every vertex and face of the mesh; deleted elements are skipped.

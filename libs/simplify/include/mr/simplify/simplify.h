@@ -5,7 +5,9 @@
 // edge flips. Every accepted operation keeps each changed triangle inside the
 // envelope of the ORIGINAL input, turns no face normal by more than a bound,
 // keeps the mesh a valid halfedge mesh (link condition) and creates no new
-// self-intersection (exact test). Non-manifold parts are kept aside untouched.
+// self-intersection (exact test). Non-manifold parts are kept aside untouched;
+// copies of one triangle (double-sided faces) are simplified as one face and
+// written out as often, in the same orientations, as the input had them.
 
 #include <mr/core/triangle_soup.h>
 
@@ -20,8 +22,8 @@ struct SimplifyOptions {
   double epsilon_rel = 1e-3;
   /// Absolute envelope radius; overrides epsilon_rel when > 0.
   double epsilon_abs = 0.0;
-  /// Stop collapsing at this many faces (of the manifold part plus the kept
-  /// faces); 0 means as far as the envelope allows.
+  /// Stop collapsing at this many output faces (copies and kept-aside faces
+  /// included); 0 means as far as the envelope allows.
   std::size_t target_faces = 0;
   /// Largest angle (degrees) between a face's normal before and after an operation.
   double max_normal_deviation_deg = 60.0;
@@ -37,6 +39,7 @@ struct SimplifyResult {
   std::size_t faces_before = 0;
   std::size_t faces_after = 0;
   std::size_t kept_aside_faces = 0;  ///< non-manifold or repeated-index faces passed through
+  std::size_t duplicate_faces = 0;   ///< copies of an earlier face (same vertices), simplified along with it
   std::size_t locked_vertices = 0;   ///< vertices never moved (non-manifold neighbourhood)
   std::size_t collapses = 0;
   std::size_t flips = 0;
