@@ -1,5 +1,7 @@
 #include <mr/tetmesh/insertion.h>
 
+#include "coplanar_polygons.h"
+#include "inserter_keys.h"
 #include "triangle_inserter.h"
 
 #include <mr/core/errors.h>
@@ -56,6 +58,23 @@ class Copies {
   std::map<std::uint32_t, std::vector<std::uint32_t>> copies_;
 };
 
+// Triangles that may merge with coplanar neighbours into one polygon: not
+// skipped, three distinct corners, and no copy anywhere (copies are
+// inserted once and marked afterwards, see Copies).
+std::vector<char> mergeable(std::span<const std::array<Index, 3>> triangles, std::span<const char> skip,
+                            const InsertionOptions& options) {
+  std::vector<char> eligible(triangles.size(), 0);
+  if (!options.merge_coplanar) return eligible;
+  std::map<std::array<Index, 3>, std::size_t> uses;
+  for (const auto& f : triangles) ++uses[detail::sorted_corners(f)];
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const auto& f = triangles[i];
+    const bool distinct = f[0] != f[1] && f[1] != f[2] && f[2] != f[0];
+    eligible[i] = (skip.empty() || skip[i] == 0) && distinct && uses[detail::sorted_corners(f)] == 1;
+  }
+  return eligible;
+}
+
 }  // namespace
 
 InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input,
@@ -67,20 +86,40 @@ InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input,
   if (!skip.empty() && skip.size() != input.triangles.size()) {
     throw UsageError("insert_triangles: the skip list does not match the input");
   }
+  const std::size_t n = input.triangles.size();
+  std::vector<std::array<Index, 3>> triangles(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Triangle& f = input.triangles[i];
+    triangles[i] = {input_vertex[f[0]], input_vertex[f[1]], input_vertex[f[2]]};
+  }
+  const detail::CoplanarGrouping grouping = detail::group_coplanar_triangles(
+      mesh, triangles, mergeable(triangles, skip, options), detail::TriangleInserter::kMaxCorners);
+
   detail::TriangleInserter inserter(mesh, options.max_exact_bits);
   Copies copies;
   InsertionStats stats;
-  const std::size_t n = input.triangles.size();
+  stats.marked_as.resize(n);
+  auto polygon = grouping.polygons.begin();
   const std::size_t report_every = std::max<std::size_t>(1, n / 100);
   for (std::size_t i = 0; i < n; ++i) {
+    const auto id = static_cast<std::uint32_t>(i);
+    stats.marked_as[i] = id;
     if (!skip.empty() && skip[i] != 0) {
       ++stats.skipped;
       continue;
     }
-    const Triangle& f = input.triangles[i];
-    const Index a = input_vertex[f[0]], b = input_vertex[f[1]], c = input_vertex[f[2]];
-    const auto id = static_cast<std::uint32_t>(i);
-    if (copies.first_on(a, b, c, id) == id) inserter.insert(a, b, c, id);
+    const std::uint32_t group = grouping.polygon_of[i];
+    if (group == detail::CoplanarGrouping::kNotGrouped) {
+      const auto& [a, b, c] = triangles[i];
+      if (copies.first_on(a, b, c, id) == id) inserter.insert(triangles[i], id);
+    } else if (group == id) {
+      inserter.insert(polygon->corners, id);
+      if (polygon->corners.size() > 3) ++stats.polygons;
+      ++polygon;
+    } else {
+      stats.marked_as[i] = group;
+      ++stats.merged;
+    }
     if (i % report_every == 0) logger.progress("insertion", static_cast<double>(i) / static_cast<double>(n));
   }
   copies.mark(mesh);
@@ -99,7 +138,9 @@ InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input,
   for (Index v = 0; v < mesh.vertex_slots(); ++v) {
     stats.rational_vertices += mesh.vertex_alive(v) && mesh.position(v).is_exact();
   }
-  logger.log(LogLevel::debug, "insertion: " + std::to_string(stats.inserted) + " triangles (and " +
+  logger.log(LogLevel::debug, "insertion: " + std::to_string(stats.inserted) + " triangles and polygons (" +
+                                  std::to_string(stats.merged) + " triangles merged into " +
+                                  std::to_string(stats.polygons) + " coplanar polygons, " +
                                   std::to_string(stats.copies) + " copies), " +
                                   std::to_string(stats.new_vertices) + " cut points, " +
                                   std::to_string(stats.rational_vertices) + " still rational");

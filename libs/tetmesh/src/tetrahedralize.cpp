@@ -93,8 +93,11 @@ std::size_t count_rational(const Mesh& mesh) {
 
 struct Embedding {
   Mesh mesh;
-  /// Per vertex slot, the input triangle whose insertion created it.
+  /// Per vertex slot, the input triangle (or polygon, by its first
+  /// triangle) whose insertion created it.
   std::vector<std::uint32_t> creator;
+  /// Per input triangle, the polygon it was inserted in (InsertionStats::marked_as).
+  std::vector<std::uint32_t> marked_as;
 };
 
 // Background mesh, insertion of every triangle not skipped, and rounding of
@@ -110,7 +113,7 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
     count(timer, "vertices", background.mesh.num_vertices());
     count(timer, "tets", background.mesh.num_tets());
   }
-  Embedding embedding{std::move(background.mesh), {}};
+  Embedding embedding{std::move(background.mesh), {}, {}};
   Mesh& mesh = embedding.mesh;
   {
     StageTimer timer(stats, "insertion", logger);
@@ -118,12 +121,15 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
     count(timer, "triangles", inserted.inserted);
     count(timer, "degenerate_skipped", inserted.degenerate);
     count(timer, "copies", inserted.copies);
+    count(timer, "coplanar_polygons", inserted.polygons);
+    count(timer, "merged_triangles", inserted.merged);
     count(timer, "left_out", inserted.skipped);
     count(timer, "cut_points", inserted.new_vertices);
     count(timer, "steiner_points", inserted.steiner_points);
     count(timer, "eagerly_rounded", inserted.eagerly_rounded);
     count(timer, "tets", mesh.num_tets());
     embedding.creator = std::move(inserted.vertex_creator);
+    embedding.marked_as = std::move(inserted.marked_as);
   }
   StageTimer timer(stats, "rounding", logger);
   // A cut point closer than this to a neighbour may be merged with it: far
@@ -182,13 +188,18 @@ Mesh embed_and_improve(const TriangleSoup& surface, const SurfaceBounds& bounds,
     const std::size_t remaining = count_rational(mesh);
     if (remaining == 0) return std::move(mesh);
     // Rational points are only ever made by insertion, so a rational
-    // vertex still sits in the slot its creator gave it.
-    std::size_t newly_skipped = 0;
+    // vertex still sits in the slot its creator gave it. A polygon's
+    // triangles are left out together.
+    std::vector<char> stuck_creator(surface.triangles.size(), 0);
     for (Index v = 0; v < mesh.vertex_slots(); ++v) {
       if (!mesh.vertex_alive(v) || !mesh.position(v).is_exact() || v >= embedding.creator.size()) continue;
       const std::uint32_t creator = embedding.creator[v];
-      if (creator != InsertionStats::kNoCreator && skip[creator] == 0) {
-        skip[creator] = 1;
+      if (creator != InsertionStats::kNoCreator) stuck_creator[creator] = 1;
+    }
+    std::size_t newly_skipped = 0;
+    for (std::size_t i = 0; i < skip.size(); ++i) {
+      if (skip[i] == 0 && stuck_creator[embedding.marked_as[i]] != 0) {
+        skip[i] = 1;
         ++newly_skipped;
       }
     }

@@ -22,16 +22,16 @@ std::vector<std::uint32_t> with_id(std::vector<std::uint32_t> ids, std::uint32_t
 }
 
 // Whether the convex polygon `polygon` (on P, any order) overlaps the
-// interior of `triangle`, by separating lines: T's edge lines, and the
+// interior of the convex polygon `convex` (T), by separating lines: T's edge lines, and the
 // polygon's own edges (a pair of corners with all other corners on one
 // side). side(p, q, x) is orient2d of the projections, or kUncertainSign
 // from a filter; nullopt when an uncertain sign would decide.
 template <class Point, class Side>
-std::optional<bool> polygon_overlaps_triangle(std::span<const Point> polygon, const std::array<Point, 3>& triangle,
-                                              int orientation, Side side) {
-  for (int line = 0; line < 3; ++line) {
-    const Point& p = triangle[line];
-    const Point& q = triangle[(line + 1) % 3];
+std::optional<bool> polygon_overlaps_convex(std::span<const Point> polygon, std::span<const Point> convex,
+                                            int orientation, Side side) {
+  for (std::size_t line = 0; line < convex.size(); ++line) {
+    const Point& p = convex[line];
+    const Point& q = convex[(line + 1) % convex.size()];
     bool uncertain = false;
     bool some_inside = false;
     for (const Point& x : polygon) {
@@ -61,7 +61,7 @@ std::optional<bool> polygon_overlaps_triangle(std::span<const Point> polygon, co
       if (!is_edge || polygon_side == 0) continue;
       bool separated = true;
       bool uncertain = false;
-      for (const Point& corner : triangle) {
+      for (const Point& corner : convex) {
         const int s = side(polygon[i], polygon[j], corner);
         if (s == kUncertainSign) {
           uncertain = true;
@@ -105,7 +105,11 @@ void TriangleInserter::note_new_vertex(Index v) {
 
 // ---------------------------------------------------------------- the plane
 
-bool TriangleInserter::set_up_plane(Index a, Index b, Index c, std::uint32_t id) {
+bool TriangleInserter::set_up_plane(std::span<const Index> corners, std::uint32_t id) {
+  if (corners.size() < 3 || corners.size() > kMaxCorners) {
+    throw RunError("triangle insertion: a polygon needs 3 to 12 corners (internal error)");
+  }
+  const Index a = corners[0], b = corners[1], c = corners[2];
   if (a == b || b == c || c == a) return false;
   const HybridPoint& pa = mesh_.position(a);
   const HybridPoint& pb = mesh_.position(b);
@@ -113,7 +117,7 @@ bool TriangleInserter::set_up_plane(Index a, Index b, Index c, std::uint32_t id)
   if (collinear(pa, pb, pc)) return false;
   ++generation_;
   id_ = id;
-  corners_ = {a, b, c};
+  corners_.assign(corners.begin(), corners.end());
   // Project along the axis where T is widest: its projection is then not
   // degenerate, and the lines through its edges are the vertical planes
   // through them.
@@ -126,10 +130,11 @@ bool TriangleInserter::set_up_plane(Index a, Index b, Index c, std::uint32_t id)
       orientation_ = orient2d_projected(pa, pb, pc, k);
     }
   }
-  for (int i = 0; i < 3; ++i) {
-    ExactPoint3 lifted = mesh_.position(corners_[i]).to_exact();
+  line_lift_.clear();
+  for (const Index corner : corners_) {
+    ExactPoint3 lifted = mesh_.position(corner).to_exact();
     (axis_ == 0 ? lifted.x : axis_ == 1 ? lifted.y : lifted.z) += 1;
-    line_lift_[i] = HybridPoint::from_exact(std::move(lifted));
+    line_lift_.push_back(HybridPoint::from_exact(std::move(lifted)));
   }
   plane_sign_.clear();
   line_side_.clear();
@@ -157,11 +162,12 @@ int TriangleInserter::plane_sign(Index v) {
 }
 
 int TriangleInserter::line_side(int line, Index v) {
-  const auto [it, inserted] = line_side_.try_emplace(v, std::array<std::int8_t, 3>{2, 2, 2});
+  auto [it, inserted] = line_side_.try_emplace(v);
+  if (inserted) it->second.fill(2);
   std::int8_t& side = it->second[line];
   if (side == 2) {
     const Index p = corners_[line];
-    const Index q = corners_[(line + 1) % 3];
+    const Index q = corners_[(line + 1) % line_count()];
     side = static_cast<std::int8_t>(
         orientation_ * orient2d_projected(mesh_.position(p), mesh_.position(q), mesh_.position(v), axis_));
   }
@@ -182,7 +188,7 @@ bool TriangleInserter::may_meet_triangle(Index t) {
     below += s < 0;
   }
   if (above == 4 || below == 4) return false;
-  for (int line = 0; line < 3; ++line) {
+  for (int line = 0; line < static_cast<int>(line_count()); ++line) {
     int outside = 0;
     for (Index v : c) outside += line_side(line, v) < 0;
     if (outside == 4) return false;
@@ -246,7 +252,7 @@ bool TriangleInserter::is_cut(Index t) {
 // crossed edge do (a cut point is between its edge's ends).
 bool TriangleInserter::section_outside_a_line(Index t) {
   const Tet& c = mesh_.tet(t);
-  for (int line = 0; line < 3; ++line) {
+  for (int line = 0; line < static_cast<int>(line_count()); ++line) {
     bool outside = true;
     for (int i = 0; i < 4 && outside; ++i) {
       if (plane_sign(c[i]) == 0 && line_side(line, c[i]) >= 0) outside = false;
@@ -295,23 +301,25 @@ std::optional<bool> TriangleInserter::section_overlaps_filtered(const Tet& c) {
     if (!box) return std::nullopt;
     section[count++] = *box;
   }
-  const std::array<PointBox, 3> triangle{box_of(mesh_.position(corners_[0])), box_of(mesh_.position(corners_[1])),
-                                         box_of(mesh_.position(corners_[2]))};
-  return polygon_overlaps_triangle(std::span<const PointBox>(section.data(), count), triangle, orientation_,
-                                   [&](const PointBox& p, const PointBox& q, const PointBox& x) {
-                                     return orient2d_projected(p, q, x, axis_);
-                                   });
+  std::array<PointBox, kMaxCorners> polygon;
+  for (std::size_t i = 0; i < line_count(); ++i) polygon[i] = box_of(mesh_.position(corners_[i]));
+  return polygon_overlaps_convex(std::span<const PointBox>(section.data(), count),
+                                 std::span<const PointBox>(polygon.data(), line_count()), orientation_,
+                                 [&](const PointBox& p, const PointBox& q, const PointBox& x) {
+                                   return orient2d_projected(p, q, x, axis_);
+                                 });
 }
 
 // Whether the convex polygon with corners `points` (on P, any order)
 // overlaps T's interior (exact).
 bool TriangleInserter::overlaps_triangle(std::span<const HybridPoint> points) {
-  const std::array<HybridPoint, 3> triangle{mesh_.position(corners_[0]), mesh_.position(corners_[1]),
-                                            mesh_.position(corners_[2])};
-  return *polygon_overlaps_triangle(points, triangle, orientation_,
-                                    [&](const HybridPoint& p, const HybridPoint& q, const HybridPoint& x) {
-                                      return orient2d_projected(p, q, x, axis_);
-                                    });
+  std::vector<HybridPoint> polygon;
+  polygon.reserve(line_count());
+  for (const Index corner : corners_) polygon.push_back(mesh_.position(corner));
+  return *polygon_overlaps_convex(points, std::span<const HybridPoint>(polygon), orientation_,
+                                  [&](const HybridPoint& p, const HybridPoint& q, const HybridPoint& x) {
+                                    return orient2d_projected(p, q, x, axis_);
+                                  });
 }
 
 // ------------------------------------------------------------------ cutting
@@ -328,7 +336,7 @@ Index TriangleInserter::split_point(Index u, Index v, int line, Index seed_tet) 
   const Index w = mesh_.add_vertex(
       line < 0 ? plane_point(u, v)
                : HybridPoint::from_exact(intersect_segment_plane(pu, pv, mesh_.position(corners_[line]),
-                                                                 mesh_.position(corners_[(line + 1) % 3]),
+                                                                 mesh_.position(corners_[(line + 1) % line_count()]),
                                                                  line_lift_[line])));
   note_new_vertex(w);
   it->second = w;
@@ -426,7 +434,7 @@ std::pair<std::vector<Index>, std::vector<Index>> TriangleInserter::split_polygo
 std::vector<TriangleInserter::Piece> TriangleInserter::clip_by_triangle(std::vector<Index> polygon,
                                                                         const Ids& ids, Index seed_tet) {
   std::vector<Piece> pieces;
-  for (int line = 0; line < 3; ++line) {
+  for (int line = 0; line < static_cast<int>(line_count()); ++line) {
     auto [inside, outside] = split_polygon(polygon, line, seed_tet);
     if (!outside.empty()) pieces.push_back({std::move(outside), ids});
     if (inside.empty()) return pieces;
@@ -525,8 +533,8 @@ void TriangleInserter::collect_cavity() {
 
 // ----------------------------------------------------------------- driver
 
-bool TriangleInserter::insert(Index a, Index b, Index c, std::uint32_t id) {
-  if (!set_up_plane(a, b, c, id)) {
+bool TriangleInserter::insert(std::span<const Index> corners, std::uint32_t id) {
+  if (!set_up_plane(corners, id)) {
     ++counters_.degenerate;
     return false;
   }

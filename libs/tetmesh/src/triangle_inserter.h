@@ -1,14 +1,15 @@
 #pragma once
-// Stage 4 for one triangle: cut the tets it crosses so that it becomes a
-// union of mesh faces, exactly (docs/ARCHITECTURE.md, "Triangle insertion").
+// Stage 4 for one triangle, or one convex polygon of coplanar triangles
+// (coplanar_polygons.h): cut the tets it crosses so that it becomes a union
+// of mesh faces, exactly (docs/ARCHITECTURE.md, "Triangle insertion").
 //
-// For input triangle T with plane P:
+// For input polygon T (usually a triangle) with plane P:
 // 1. candidates: the tets that may meet T (a conservative exact test),
 //    found by walking from a tet at T's first corner;
 // 2. the candidates P crosses, where the section overlaps T, are cut by P: a rational point on each crossed
 //    edge, the section polygon between the two halves;
 // 3. every polygon on P (sections, and existing faces lying on P) is clipped
-//    by the three lines through T's edges; the pieces inside T are marked
+//    by the lines through T's edges; the pieces inside T are marked
 //    with T's id;
 // 4. the cavity (cut tets and every tet around an edge that got a new
 //    point) is rebuilt from its convex cells (convex_cells.h), each polygon
@@ -51,9 +52,14 @@ class TriangleInserter {
   /// insertion where nothing inverts.
   TriangleInserter(Mesh& mesh, std::size_t max_exact_bits);
 
-  /// Inserts the triangle with corners a, b, c (mesh vertices) and input id
-  /// `id`. Returns false, changing nothing, when the corners are collinear.
-  bool insert(Index a, Index b, Index c, std::uint32_t id);
+  /// Most corners of a polygon insert() accepts.
+  static constexpr std::size_t kMaxCorners = 12;
+
+  /// Inserts the strictly convex polygon with these corners (mesh vertices,
+  /// at most kMaxCorners, all in one plane; usually a triangle) and marks its
+  /// faces with input id `id`. Returns false, changing nothing, when the
+  /// first three corners are collinear.
+  bool insert(std::span<const Index> corners, std::uint32_t id);
 
   const InsertionCounters& counters() const { return counters_; }
   /// Per vertex slot, the id of the triangle whose insertion created the
@@ -74,7 +80,8 @@ class TriangleInserter {
     std::vector<Piece> pieces;
   };
 
-  bool set_up_plane(Index a, Index b, Index c, std::uint32_t id);
+  bool set_up_plane(std::span<const Index> corners, std::uint32_t id);
+  std::size_t line_count() const { return corners_.size(); }
   int plane_sign(Index v);
   int line_side(int line, Index v);
   bool may_meet_triangle(Index t);
@@ -119,12 +126,12 @@ class TriangleInserter {
   // ---- state of the current triangle ----
   std::uint32_t generation_ = 0;
   std::uint32_t id_ = 0;
-  std::array<Index, 3> corners_{};
-  std::array<HybridPoint, 3> line_lift_;  ///< corner i + unit vector along axis_: the line planes
+  std::vector<Index> corners_;
+  std::vector<HybridPoint> line_lift_;    ///< corner i + unit vector along axis_: the line planes
   int axis_ = 0;                          ///< projection axis for the lines through T's edges
   int orientation_ = 1;                   ///< sign making T's interior positive for line_side
   std::unordered_map<Index, int> plane_sign_;
-  std::unordered_map<Index, std::array<std::int8_t, 3>> line_side_;
+  std::unordered_map<Index, std::array<std::int8_t, kMaxCorners>> line_side_;
   std::vector<std::uint32_t> candidate_stamp_, cut_stamp_, cavity_stamp_;
   std::vector<Index> candidates_, cut_tets_, cavity_;
   std::unordered_map<std::uint64_t, HybridPoint> plane_points_;  ///< P on edge (sorted pair), computed once

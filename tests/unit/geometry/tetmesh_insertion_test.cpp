@@ -2,7 +2,9 @@
 // satisfy every invariant (find_mesh_inconsistency: exact orientation,
 // conforming adjacency, two-sided marks) and each input triangle must be
 // exactly covered by the faces marked with its id: their areas add up to
-// the triangle's area (up to the rounding of cut points to doubles).
+// the triangle's area (up to the rounding of cut points to doubles). Where
+// coplanar neighbours were inserted as one polygon, the faces marked with
+// the polygon's id add up to the area of all its triangles.
 
 #include "test_support.h"
 
@@ -58,12 +60,19 @@ void require_exactly_embedded(const TriangleSoup& soup, const Inserted& inserted
   const Mesh& mesh = inserted.background.mesh;
   REQUIRE(find_mesh_inconsistency(mesh) == "");
   const std::map<std::uint32_t, double> area = marked_area(mesh);
+  const std::vector<std::uint32_t>& marked_as = inserted.stats.marked_as;
+  REQUIRE(marked_as.size() == soup.triangles.size());
+  std::map<std::uint32_t, double> expected_area;
   for (std::size_t i = 0; i < soup.triangles.size(); ++i) {
     const Triangle& f = soup.triangles[i];
-    const double expected = triangle_area(soup.positions[f[0]], soup.positions[f[1]], soup.positions[f[2]]);
-    const auto it = area.find(static_cast<std::uint32_t>(i));
+    expected_area[static_cast<std::uint32_t>(i)] += 0.0;  // every id is checked, merged ones against 0
+    expected_area[marked_as[i]] +=
+        triangle_area(soup.positions[f[0]], soup.positions[f[1]], soup.positions[f[2]]);
+  }
+  for (const auto& [id, expected] : expected_area) {
+    const auto it = area.find(id);
     const double got = it == area.end() ? 0.0 : it->second;
-    INFO("triangle " << i << " got " << got << " expected " << expected);
+    INFO("id " << id << " got " << got << " expected " << expected);
     CHECK(std::abs(got - expected) <= 1e-9 * std::max(1.0, expected));
   }
 }
@@ -93,9 +102,21 @@ TriangleSoup merged(const TriangleSoup& a, const TriangleSoup& b) {
 
 TEST_CASE("insertion: a cube's faces become mesh faces", "[tetmesh][insertion]") {
   const TriangleSoup cube = test::cube_soup();
-  const Inserted inserted = insert_soup(cube);
-  CHECK(inserted.stats.inserted == 12);
-  require_exactly_embedded(cube, inserted);
+  SECTION("each triangle on its own") {
+    InsertionOptions options;
+    options.merge_coplanar = false;
+    const Inserted inserted = insert_soup(cube, options);
+    CHECK(inserted.stats.inserted == 12);
+    CHECK(inserted.stats.merged == 0);
+    require_exactly_embedded(cube, inserted);
+  }
+  SECTION("the two triangles of each side as one square") {
+    const Inserted inserted = insert_soup(cube);
+    CHECK(inserted.stats.inserted == 6);
+    CHECK(inserted.stats.polygons == 6);
+    CHECK(inserted.stats.merged == 6);
+    require_exactly_embedded(cube, inserted);
+  }
 }
 
 TEST_CASE("insertion: two overlapping cubes cut each other", "[tetmesh][insertion]") {
@@ -148,4 +169,77 @@ TEST_CASE("insertion: cut points that grow too long are rounded at once, the emb
   INFO("rounded during insertion: " << inserted.stats.eagerly_rounded << " of " << inserted.stats.new_vertices << " rational left " << inserted.stats.rational_vertices);
   CHECK(inserted.stats.eagerly_rounded > 0);
   require_exactly_embedded(soup, inserted);
+}
+
+namespace {
+
+// A planar fan: triangles (0, i, i + 1) over `corners` points of a circle in
+// the plane z = 0.5 (exact coordinates on a dyadic grid), with the given
+// orientation of each triangle.
+TriangleSoup planar_fan(const std::vector<Vec3d>& rim, const std::vector<bool>& reversed) {
+  TriangleSoup soup;
+  soup.positions = rim;
+  for (Index i = 1; i + 1 < static_cast<Index>(rim.size()); ++i) {
+    if (reversed[i - 1]) {
+      soup.triangles.push_back({0, i + 1, i});
+    } else {
+      soup.triangles.push_back({0, i, i + 1});
+    }
+  }
+  return soup;
+}
+
+std::vector<Vec3d> octagon() {
+  return {{0.5, 0.0, 0.5},   {0.85, 0.15, 0.5}, {1.0, 0.5, 0.5},   {0.85, 0.85, 0.5},
+          {0.5, 1.0, 0.5},   {0.15, 0.85, 0.5}, {0.0, 0.5, 0.5},   {0.15, 0.15, 0.5}};
+}
+
+}  // namespace
+
+TEST_CASE("insertion: a fan of coplanar triangles is one convex polygon, cut along its rim only",
+          "[tetmesh][insertion]") {
+  const TriangleSoup fan = planar_fan(octagon(), std::vector<bool>(6, false));
+  InsertionOptions separate;
+  separate.merge_coplanar = false;
+  const Inserted alone = insert_soup(fan, separate);
+  const Inserted merged_fan = insert_soup(fan);
+  CHECK(merged_fan.stats.inserted == 1);
+  CHECK(merged_fan.stats.polygons == 1);
+  CHECK(merged_fan.stats.merged == 5);
+  for (std::uint32_t id : merged_fan.stats.marked_as) CHECK(id == 0);
+  require_exactly_embedded(fan, merged_fan);
+  require_exactly_embedded(fan, alone);
+  // The diagonals from corner 0 are no longer cut into the mesh.
+  INFO("cut points: merged " << merged_fan.stats.new_vertices << ", separate " << alone.stats.new_vertices);
+  CHECK(merged_fan.stats.new_vertices < alone.stats.new_vertices);
+}
+
+TEST_CASE("insertion: coplanar triangles merge only where the polygon stays convex and oriented alike",
+          "[tetmesh][insertion]") {
+  SECTION("a flipped triangle in the fan splits it") {
+    std::vector<bool> reversed(6, false);
+    reversed[2] = true;
+    const TriangleSoup fan = planar_fan(octagon(), reversed);
+    const Inserted inserted = insert_soup(fan);
+    CHECK(inserted.stats.marked_as[2] == 2);  // alone: opposite orientation
+    CHECK(inserted.stats.marked_as[1] != inserted.stats.marked_as[3]);
+    require_exactly_embedded(fan, inserted);
+  }
+  SECTION("a non-convex fan is cut into convex polygons") {
+    std::vector<Vec3d> rim = octagon();
+    rim[4] = {0.5, 0.3, 0.5};  // a reflex corner
+    const TriangleSoup fan = planar_fan(rim, std::vector<bool>(6, false));
+    const Inserted inserted = insert_soup(fan);
+    CHECK(inserted.stats.merged > 0);
+    CHECK(inserted.stats.marked_as[2] != inserted.stats.marked_as[3]);  // their union has the reflex corner
+    require_exactly_embedded(fan, inserted);
+  }
+  SECTION("triangles sharing an edge in different planes stay apart") {
+    TriangleSoup soup;
+    soup.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 1e-9}};
+    soup.triangles = {{0, 1, 2}, {2, 1, 3}};
+    const Inserted inserted = insert_soup(soup);
+    CHECK(inserted.stats.merged == 0);
+    require_exactly_embedded(soup, inserted);
+  }
 }

@@ -27,8 +27,9 @@ struct SimplifyOptions {
   std::size_t target_faces = 0;
   /// Largest angle (degrees) between a face's normal before and after an operation.
   double max_normal_deviation_deg = 60.0;
-  /// Passes of angle-improving edge flips after the collapses; 0 disables them.
-  int flip_passes = 3;
+  /// Most sweeps of angle-improving edge flips after the collapses (they stop
+  /// at the first sweep that flips nothing); 0 disables them.
+  int flip_passes = 20;
   /// Worker threads for the parallel checks; 0 means all hardware threads.
   /// The output does not depend on it.
   int threads = 0;

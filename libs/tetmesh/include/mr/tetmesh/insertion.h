@@ -16,7 +16,9 @@
 namespace mr::tetmesh {
 
 struct InsertionStats {
-  std::size_t inserted = 0;
+  std::size_t inserted = 0;         ///< triangles and polygons cut into the mesh
+  std::size_t polygons = 0;         ///< of those, convex polygons of several coplanar triangles
+  std::size_t merged = 0;           ///< triangles embedded as part of an earlier one's polygon
   std::size_t degenerate = 0;       ///< skipped: collinear corners, nothing to embed
   std::size_t copies = 0;           ///< repeats of an earlier triangle's corners: marked, not cut again
   std::size_t cut_tets = 0;
@@ -30,6 +32,9 @@ struct InsertionStats {
   /// Per vertex slot, the id of the triangle whose insertion created the
   /// vertex; kNoCreator for the vertices of the background mesh.
   std::vector<std::uint32_t> vertex_creator;
+  /// Per input triangle, the id its faces are marked with: its own, or that
+  /// of the first triangle of the coplanar polygon it was inserted in.
+  std::vector<std::uint32_t> marked_as;
   static constexpr std::uint32_t kNoCreator = 0xffffffffu;
 };
 
@@ -38,9 +43,15 @@ struct InsertionOptions {
   /// cuts multiply the length) is rounded as soon as its triangle is in, if
   /// no tet around it inverts; the others wait for the rounding stage.
   std::size_t max_exact_bits = 16384;
+  /// Insert edge-adjacent triangles that lie in one plane with the same
+  /// orientation as one convex polygon (coplanar_polygons.h): the edges
+  /// between them are not cut into the mesh, and the polygon's faces carry
+  /// the id of its first triangle only (see InsertionStats::marked_as).
+  bool merge_coplanar = true;
 };
 
-/// Inserts the triangles of `input` in order; triangle i gets id i.
+/// Inserts the triangles of `input` in order; the faces of triangle i are
+/// marked with id i, or with marked_as[i] when it was merged into a polygon.
 /// `input_vertex` maps input vertices to mesh vertices (BackgroundMesh).
 /// Triangles with skip[i] != 0 are left out (`skip` empty: none). Cut
 /// points are left rational: rounding_stage rounds them afterwards.
