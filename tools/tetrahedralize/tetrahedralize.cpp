@@ -35,8 +35,9 @@ cli::ToolSpec make_spec(ToolOptions& o) {
   spec.positionals = {"IN", "OUT"};
   spec.description =
       "Simplify the input inside its epsilon-envelope, build a background Delaunay mesh, insert\n"
-      "every input triangle exactly (it becomes a union of mesh faces), round cut points to\n"
-      "doubles where no tet inverts, and keep the tets whose centroid has winding number |w| > 1/2.\n"
+      "every input triangle exactly (it becomes a union of mesh faces; coplanar neighbours are\n"
+      "inserted together as one convex polygon), round cut points to doubles where no tet\n"
+      "inverts, and keep the tets whose centroid has winding number |w| > 1/2.\n"
       "OUT: .msh (MSH 4.1 by default), .mesh (Medit) or .vtu. Every written tet is positively\n"
       "oriented on the written coordinates (exact check). Output is the same for any -j.";
   auto& t = o.pipeline.tetrahedralize;

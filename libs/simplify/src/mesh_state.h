@@ -97,9 +97,11 @@ class MeshState {
   bool boundary_curve_kept(TriMesh::HalfedgeHandle h) const;
   bool shapes_acceptable(const std::vector<NewFace>& faces) const;
   bool inside_envelope(const std::vector<NewFace>& faces) const;
-  /// replaced(face index) tells faces the operation removes or rewrites.
+  /// replaced(face index) tells faces the operation removes or rewrites;
+  /// old_faces are their corners.
   template <class Replaced>
-  bool faces_apart(const std::vector<NewFace>& faces, Replaced&& replaced) const;
+  bool faces_apart(const std::vector<NewFace>& faces, const std::vector<Corners>& old_faces,
+                   Replaced&& replaced) const;
 
   TriMesh mesh_;
   DerivedTolerances tolerances_;

@@ -204,14 +204,21 @@ bool MeshState::collapse_stays_in_plane(TriMesh::HalfedgeHandle h, const std::ve
   return new_faces_within_old(old_faces, new_faces);
 }
 
+// New faces may not cross each other. A face of the rest of the surface may
+// be crossed by at most as many new faces as old faces crossed it: on a soup
+// that already intersects itself (CAD booleans, overlapping parts) the faces
+// around an existing crossing can still be simplified, while no face that
+// was apart from the region gets crossed, and no pair count grows.
 template <class Replaced>
-bool MeshState::faces_apart(const std::vector<NewFace>& faces, Replaced&& replaced) const {
+bool MeshState::faces_apart(const std::vector<NewFace>& faces, const std::vector<Corners>& old_faces,
+                            Replaced&& replaced) const {
+  const auto crosses = [](const Corners& a, const Corners& b) {
+    return intersect_triangles(a[0], a[1], a[2], b[0], b[1], b[2]).improper();
+  };
   for (std::size_t i = 0; i < faces.size(); ++i)
-    for (std::size_t j = i + 1; j < faces.size(); ++j) {
-      const Corners& a = faces[i].corners;
-      const Corners& b = faces[j].corners;
-      if (intersect_triangles(a[0], a[1], a[2], b[0], b[1], b[2]).improper()) return false;
-    }
+    for (std::size_t j = i + 1; j < faces.size(); ++j)
+      if (crosses(faces[i].corners, faces[j].corners)) return false;
+  std::vector<std::pair<std::uint32_t, Corners>> crossed;  // one entry per (new face, crossed face)
   std::vector<std::uint32_t> candidates;
   const auto n_mesh_faces = static_cast<std::uint32_t>(mesh_.n_faces());
   for (const NewFace& face : faces) {
@@ -227,15 +234,29 @@ bool MeshState::faces_apart(const std::vector<NewFace>& faces, Replaced&& replac
         b = corners(f);
       }
       if (exactly_collinear(b[0], b[1], b[2])) continue;  // as check_surface: degenerate faces are not counted
-      if (intersect_triangles(a[0], a[1], a[2], b[0], b[1], b[2]).improper()) return false;
+      if (crosses(a, b)) crossed.emplace_back(id, b);
     }
+  }
+  std::sort(crossed.begin(), crossed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (std::size_t i = 0; i < crossed.size();) {
+    std::size_t j = i;
+    while (j < crossed.size() && crossed[j].first == crossed[i].first) ++j;
+    const Corners& b = crossed[i].second;
+    const auto crossed_before = static_cast<std::size_t>(
+        std::count_if(old_faces.begin(), old_faces.end(), [&](const Corners& old) {
+          return !exactly_collinear(old[0], old[1], old[2]) && crosses(old, b);
+        }));
+    if (j - i > crossed_before) return false;
+    i = j;
   }
   return true;
 }
 
 bool MeshState::collapse_keeps_faces_apart(TriMesh::HalfedgeHandle h) const {
   const auto v0 = mesh_.from_vertex_handle(h);
-  return faces_apart(faces_after_collapse(h), [&](TriMesh::FaceHandle f) {
+  std::vector<Corners> old_faces;
+  for (auto f : mesh_.vf_range(v0)) old_faces.push_back(corners(f));
+  return faces_apart(faces_after_collapse(h), old_faces, [&](TriMesh::FaceHandle f) {
     for (auto v : mesh_.fv_range(f))
       if (v == v0) return true;
     return false;
@@ -284,7 +305,7 @@ bool MeshState::flip_keeps_faces_apart(TriMesh::EdgeHandle e) const {
   const auto f1 = mesh_.face_handle(mesh_.halfedge_handle(e, 1));
   std::vector<NewFace> after = faces_after_flip(e);
   after.resize(2);
-  return faces_apart(after, [&](TriMesh::FaceHandle f) { return f == f0 || f == f1; });
+  return faces_apart(after, {corners(f0), corners(f1)}, [&](TriMesh::FaceHandle f) { return f == f0 || f == f1; });
 }
 
 }  // namespace mr::simplify

@@ -422,6 +422,27 @@ TEST_CASE("simplification adds no self-intersection", "[simplify]") {
   CHECK(mr::check::one_sided_distance(result.soup, input).max <= result.epsilon);
 }
 
+TEST_CASE("faces along an existing crossing are simplified too", "[simplify]") {
+  // Two flat grids crossing at right angles through a row of cells: 24 faces
+  // of each cross the other grid. Refusing every new face that crosses a
+  // face kept all 48 of them; a face may now be crossed by as many new
+  // faces as old ones crossed it.
+  TriangleSoup input = full_grid(12);
+  TriangleSoup crossing = full_grid(12);
+  for (Vec3d& p : crossing.positions) p = Vec3d(p.x(), 0.52, p.y() - 0.5);
+  input.append(crossing);
+  const auto before = mr::check::check_surface(input);
+  REQUIRE(before.self_intersecting_pairs >= 48);
+  const auto result = simplify_in_envelope(input, {});
+  INFO("faces after: " << result.faces_after);
+  CHECK(result.faces_after < 48);
+  const auto after = mr::check::check_surface(result.soup);
+  CHECK(after.self_intersecting_pairs <= before.self_intersecting_pairs);
+  CHECK(after.self_intersecting_pairs > 0);  // the grids still cross
+  CHECK(mr::check::one_sided_distance(result.soup, input).max <= result.epsilon);
+  CHECK(mr::check::one_sided_distance(input, result.soup).max <= result.epsilon);
+}
+
 TEST_CASE("simplification is deterministic whatever the thread count", "[simplify]") {
   TriangleSoup input = icosphere(4);
   for (Vec3d& p : input.positions) p *= 1.0 + 0.05 * std::sin(7 * p.x()) * std::cos(5 * p.y());
