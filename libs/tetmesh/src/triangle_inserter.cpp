@@ -178,7 +178,7 @@ int TriangleInserter::line_side(int line, Index v) {
 
 // Conservative: false only when the tet cannot meet T (strictly on one side
 // of P, or strictly outside one of the lines through T's edges).
-bool TriangleInserter::may_meet_triangle(Index t) {
+bool TriangleInserter::may_meet_polygon(Index t) {
   const Tet& c = mesh_.tet(t);
   int above = 0;
   int below = 0;
@@ -205,7 +205,7 @@ void TriangleInserter::collect_candidates() {
   stamp(candidate_stamp_, start);
   for (std::size_t i = 0; i < queue.size(); ++i) {
     const Index t = queue[i];
-    if (!may_meet_triangle(t)) continue;
+    if (!may_meet_polygon(t)) continue;
     candidates_.push_back(t);
     for (int k = 0; k < 4; ++k) {
       const Index n = mesh_.neighbour(t, k);
@@ -244,7 +244,7 @@ bool TriangleInserter::is_cut(Index t) {
   for (const auto& [i, j] : kTetEdges) {
     if (plane_sign(c[i]) * plane_sign(c[j]) < 0) section.push_back(plane_point(c[i], c[j]));
   }
-  return overlaps_triangle(section);
+  return overlaps_polygon(section);
 }
 
 // A cheap exact pre-test on the corners' sides only: the section lies
@@ -312,7 +312,7 @@ std::optional<bool> TriangleInserter::section_overlaps_filtered(const Tet& c) {
 
 // Whether the convex polygon with corners `points` (on P, any order)
 // overlaps T's interior (exact).
-bool TriangleInserter::overlaps_triangle(std::span<const HybridPoint> points) {
+bool TriangleInserter::overlaps_polygon(std::span<const HybridPoint> points) {
   std::vector<HybridPoint> polygon;
   polygon.reserve(line_count());
   for (const Index corner : corners_) polygon.push_back(mesh_.position(corner));
@@ -431,7 +431,7 @@ std::pair<std::vector<Index>, std::vector<Index>> TriangleInserter::split_polygo
 
 // The pieces of a polygon on P: those outside T keep `ids`, the one inside
 // (if any) gets T's id too.
-std::vector<TriangleInserter::Piece> TriangleInserter::clip_by_triangle(std::vector<Index> polygon,
+std::vector<TriangleInserter::Piece> TriangleInserter::clip_by_polygon(std::vector<Index> polygon,
                                                                         const Ids& ids, Index seed_tet) {
   std::vector<Piece> pieces;
   for (int line = 0; line < static_cast<int>(line_count()); ++line) {
@@ -446,7 +446,7 @@ std::vector<TriangleInserter::Piece> TriangleInserter::clip_by_triangle(std::vec
 
 void TriangleInserter::split_faces_of_cut_tets() {
   for (Index t : cut_tets_) {
-    section_pieces_[t] = clip_by_triangle(section_polygon(t), {}, t);
+    section_pieces_[t] = clip_by_polygon(section_polygon(t), {}, t);
     for (int k = 0; k < 4; ++k) {
       const auto f = mesh_.face_vertices(t, k);
       const int s0 = plane_sign(f[0]), s1 = plane_sign(f[1]), s2 = plane_sign(f[2]);
@@ -470,9 +470,9 @@ void TriangleInserter::clip_faces_on_plane() {
       if (plane_sign(f[0]) != 0 || plane_sign(f[1]) != 0 || plane_sign(f[2]) != 0) continue;
       if (split_faces_.count(sorted_corners(f)) != 0) continue;
       const std::array<HybridPoint, 3> face{mesh_.position(f[0]), mesh_.position(f[1]), mesh_.position(f[2])};
-      if (!overlaps_triangle(face)) continue;
+      if (!overlaps_polygon(face)) continue;
       const auto ids = mesh_.surface_ids(t, k);
-      std::vector<Piece> pieces = clip_by_triangle({f[0], f[1], f[2]}, Ids(ids.begin(), ids.end()), t);
+      std::vector<Piece> pieces = clip_by_polygon({f[0], f[1], f[2]}, Ids(ids.begin(), ids.end()), t);
       if (pieces.size() == 1) {
         if (pieces.front().ids.size() != ids.size()) mesh_.set_surface_ids(t, k, pieces.front().ids);
         continue;

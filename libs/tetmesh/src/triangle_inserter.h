@@ -84,12 +84,12 @@ class TriangleInserter {
   std::size_t line_count() const { return corners_.size(); }
   int plane_sign(Index v);
   int line_side(int line, Index v);
-  bool may_meet_triangle(Index t);
+  bool may_meet_polygon(Index t);
   void collect_candidates();
   bool is_cut(Index t);
   bool section_outside_a_line(Index t);
   const HybridPoint& plane_point(Index u, Index v);
-  bool overlaps_triangle(std::span<const HybridPoint> points);
+  bool overlaps_polygon(std::span<const HybridPoint> points);
   std::optional<bool> section_overlaps_filtered(const Tet& c);
 
   Index split_point(Index u, Index v, int line, Index seed_tet);
@@ -97,7 +97,7 @@ class TriangleInserter {
   std::vector<Index> section_polygon(Index t);
   std::pair<std::vector<Index>, std::vector<Index>> split_polygon(const std::vector<Index>& polygon,
                                                                   int line, Index seed_tet);
-  std::vector<Piece> clip_by_triangle(std::vector<Index> polygon, const Ids& ids, Index seed_tet);
+  std::vector<Piece> clip_by_polygon(std::vector<Index> polygon, const Ids& ids, Index seed_tet);
   void split_faces_of_cut_tets();
   void clip_faces_on_plane();
   void collect_cavity();
@@ -123,7 +123,7 @@ class TriangleInserter {
   std::vector<std::uint32_t> creator_;
   InsertionCounters counters_;
 
-  // ---- state of the current triangle ----
+  // ---- state of the current polygon ----
   std::uint32_t generation_ = 0;
   std::uint32_t id_ = 0;
   std::vector<Index> corners_;
