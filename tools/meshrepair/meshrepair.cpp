@@ -18,6 +18,7 @@ struct ToolOptions {
   bool cleanup = true;
   std::string stats_path;
   bool quiet = false;
+  bool verbose = false;
 };
 
 cli::ToolSpec make_spec(ToolOptions& o) {
@@ -50,6 +51,8 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       {"--threads", "-j", "N", "worker threads (default: all)",
        [&](const std::string& v) { t.threads = cli::parse_int("--threads", v, 1, 1024); }},
       {"--quiet", "-q", "", "print nothing on success", [&](const std::string&) { o.quiet = true; }},
+      {"--verbose", "-v", "", "also print each stage as it starts and ends",
+       [&](const std::string&) { o.verbose = true; }},
   };
   return spec;
 }
@@ -57,8 +60,8 @@ cli::ToolSpec make_spec(ToolOptions& o) {
 tetmesh::Logger make_logger(const ToolOptions& o, std::ostream& err) {
   tetmesh::Logger logger;
   if (o.quiet) return logger;
-  logger.on_message = [&err](tetmesh::LogLevel level, std::string_view text) {
-    if (level != tetmesh::LogLevel::debug) err << "meshrepair: " << text << "\n";
+  logger.on_message = [&err, verbose = o.verbose](tetmesh::LogLevel level, std::string_view text) {
+    if (level != tetmesh::LogLevel::debug || verbose) err << "meshrepair: " << text << "\n";
   };
   return logger;
 }
@@ -87,6 +90,10 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   repair_options.threads = options.tetrahedralize.threads;
   repair_options.cleanup = options.cleanup;
   const repair::RepairResult repaired = repair::repair_surface_from_tets(pipeline.mesh, input, repair_options);
+  if (options.verbose && !options.quiet) {
+    for (const repair::StageTime& stage : repaired.stages)
+      err << "meshrepair: end " << stage.name << " (" << stage.seconds << " s)\n";
+  }
 
   start = std::chrono::steady_clock::now();
   io::write_surface(registry, repaired.surface, files[1]);

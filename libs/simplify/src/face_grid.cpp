@@ -25,14 +25,29 @@ std::uint64_t FaceGrid::key(std::int64_t x, std::int64_t y, std::int64_t z) {
   return (std::uint64_t(x) << 42) | (std::uint64_t(y) << 21) | std::uint64_t(z);
 }
 
+namespace {
+
+std::int64_t entries_of(std::int64_t cells, std::int64_t max_cells) { return cells > max_cells ? 0 : cells; }
+
+}  // namespace
+
+std::int64_t FaceGrid::cells_spanned(const Vec3d& lo, const Vec3d& hi) const {
+  const auto a = cell_of(lo);
+  const auto b = cell_of(hi);
+  return (b[0] - a[0] + 1) * (b[1] - a[1] + 1) * (b[2] - a[2] + 1);
+}
+
+void FaceGrid::erase(std::uint32_t face) {
+  if (face >= boxes_.size()) return;
+  live_entries_ -= entries_of(boxes_[face].cells, kMaxCellsPerFace);
+  boxes_[face].cells = 0;
+}
+
 void FaceGrid::insert(std::uint32_t face, const Vec3d& lo, const Vec3d& hi) {
   if (face >= boxes_.size()) boxes_.resize(std::size_t(face) + 1);
   Box& box = boxes_[face];
-  const auto a = cell_of(lo);
-  const auto b = cell_of(hi);
-  const std::int64_t cells = (b[0] - a[0] + 1) * (b[1] - a[1] + 1) * (b[2] - a[2] + 1);
-  const auto entries_of = [](std::int64_t n) { return n > kMaxCellsPerFace ? 0 : n; };
-  live_entries_ += entries_of(cells) - entries_of(box.cells);
+  const std::int64_t cells = cells_spanned(lo, hi);
+  live_entries_ += entries_of(cells, kMaxCellsPerFace) - entries_of(box.cells, kMaxCellsPerFace);
   box = {lo, hi, cells};
   add_entries(face, box);
   // Rebuild once stale entries are the majority: each entry is then
@@ -56,42 +71,86 @@ void FaceGrid::add_entries(std::uint32_t face, const Box& box) {
 }
 
 void FaceGrid::rebuild() {
+  double extent = 0.0;
+  std::size_t live = 0;
+  for (const Box& box : boxes_) {
+    if (box.cells == 0) continue;
+    extent += (box.hi - box.lo).maxCoeff();
+    ++live;
+  }
+  if (live != 0) cell_size_ = std::max(cell_size_, 2.0 * extent / double(live));
   cells_.clear();
   oversize_.clear();
   in_oversize_.assign(in_oversize_.size(), 0);
   entries_ = 0;
+  live_entries_ = 0;
   for (std::uint32_t face = 0; face < boxes_.size(); ++face) {
-    if (boxes_[face].cells > 0) add_entries(face, boxes_[face]);
+    Box& box = boxes_[face];
+    if (box.cells == 0) continue;
+    box.cells = cells_spanned(box.lo, box.hi);
+    live_entries_ += entries_of(box.cells, kMaxCellsPerFace);
+    add_entries(face, box);
+  }
+}
+
+bool FaceGrid::overlaps(std::uint32_t face, const Vec3d& lo, const Vec3d& hi) const {
+  const Box& box = boxes_[face];
+  if (box.cells == 0) return false;  // erased
+  for (int k = 0; k < 3; ++k) {
+    if (box.hi[k] < lo[k] || box.lo[k] > hi[k]) return false;
+  }
+  return true;
+}
+
+// Each face is taken from one cell only: the lowest cell that both its box
+// and the query box cover (faces spanning several cells are otherwise listed
+// once per cell, and sorting the repeats away took most of the query time).
+// Oversized faces come from their own list.
+void FaceGrid::append_overlapping(const std::vector<std::uint32_t>& faces, const std::array<std::int64_t, 3>& cell,
+                                  const std::array<std::int64_t, 3>& query_first, const Vec3d& lo,
+                                  const Vec3d& hi, std::vector<std::uint32_t>& out) const {
+  for (const std::uint32_t face : faces) {
+    if (boxes_[face].cells > kMaxCellsPerFace || !overlaps(face, lo, hi)) continue;
+    const auto face_first = cell_of(boxes_[face].lo);
+    bool first_common_cell = true;
+    for (int k = 0; k < 3; ++k) first_common_cell = first_common_cell && std::max(face_first[k], query_first[k]) == cell[k];
+    if (first_common_cell) out.push_back(face);
   }
 }
 
 // For query boxes larger than the occupied part of the grid.
 void FaceGrid::collect_from_all_cells(const std::array<std::int64_t, 3>& a,
-                                      const std::array<std::int64_t, 3>& b,
+                                      const std::array<std::int64_t, 3>& b, const Vec3d& lo, const Vec3d& hi,
                                       std::vector<std::uint32_t>& out) const {
   const std::uint64_t mask = kCellRange - 1;
   for (const auto& [cell, faces] : cells_) {
     const std::array<std::int64_t, 3> c{std::int64_t(cell >> 42), std::int64_t((cell >> 21) & mask),
                                         std::int64_t(cell & mask)};
-    bool overlaps = true;
-    for (int k = 0; k < 3; ++k) overlaps = overlaps && c[k] >= a[k] && c[k] <= b[k];
-    if (overlaps) out.insert(out.end(), faces.begin(), faces.end());
+    bool inside = true;
+    for (int k = 0; k < 3; ++k) inside = inside && c[k] >= a[k] && c[k] <= b[k];
+    if (inside) append_overlapping(faces, c, a, lo, hi, out);
   }
 }
 
+// Entries are filtered by the face's current box before sorting: stale
+// entries and faces whose box misses the query's never reach the sort (on
+// thingi10k/88566 meshrepair's clean-up went from 419 s to 92 s).
 void FaceGrid::query(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const {
-  out.assign(oversize_.begin(), oversize_.end());
+  out.clear();
+  for (const std::uint32_t face : oversize_) {
+    if (overlaps(face, lo, hi)) out.push_back(face);
+  }
   const auto a = cell_of(lo);
   const auto b = cell_of(hi);
   const double box_cells = double(b[0] - a[0] + 1) * double(b[1] - a[1] + 1) * double(b[2] - a[2] + 1);
   if (box_cells > double(cells_.size())) {
-    collect_from_all_cells(a, b, out);
+    collect_from_all_cells(a, b, lo, hi, out);
   } else {
     for (std::int64_t x = a[0]; x <= b[0]; ++x)
       for (std::int64_t y = a[1]; y <= b[1]; ++y)
         for (std::int64_t z = a[2]; z <= b[2]; ++z) {
           const auto it = cells_.find(key(x, y, z));
-          if (it != cells_.end()) out.insert(out.end(), it->second.begin(), it->second.end());
+          if (it != cells_.end()) append_overlapping(it->second, {x, y, z}, a, lo, hi, out);
         }
   }
   std::sort(out.begin(), out.end());

@@ -22,7 +22,9 @@ class FaceGrid {
   FaceGrid(const Vec3d& origin, double cell_size);
 
   void insert(std::uint32_t face, const Vec3d& lo, const Vec3d& hi);
-  /// Candidate faces whose box may overlap [lo, hi], sorted, without repeats.
+  /// Forgets a deleted face (its entries go stale).
+  void erase(std::uint32_t face);
+  /// The faces whose current box overlaps [lo, hi] (closed), sorted, without repeats.
   void query(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const;
 
  private:
@@ -31,15 +33,20 @@ class FaceGrid {
 
   struct Box {
     Vec3d lo, hi;
-    std::int64_t cells = 0;  ///< cells the box spans; 0: never inserted
+    std::int64_t cells = 0;  ///< cells the box spans; 0: not in the grid
   };
 
+  std::int64_t cells_spanned(const Vec3d& lo, const Vec3d& hi) const;
   void add_entries(std::uint32_t face, const Box& box);
   void rebuild();
   std::array<std::int64_t, 3> cell_of(const Vec3d& p) const;
   static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z);
+  bool overlaps(std::uint32_t face, const Vec3d& lo, const Vec3d& hi) const;
+  void append_overlapping(const std::vector<std::uint32_t>& faces, const std::array<std::int64_t, 3>& cell,
+                          const std::array<std::int64_t, 3>& query_first, const Vec3d& lo, const Vec3d& hi,
+                          std::vector<std::uint32_t>& out) const;
   void collect_from_all_cells(const std::array<std::int64_t, 3>& a, const std::array<std::int64_t, 3>& b,
-                              std::vector<std::uint32_t>& out) const;
+                              const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const;
 
   Vec3d origin_ = Vec3d::Zero();
   double cell_size_ = 1.0;

@@ -220,8 +220,11 @@ void MeshState::collapse(TriMesh::HalfedgeHandle h) {
   const auto v0 = mesh_.from_vertex_handle(h);
   const auto v1 = mesh_.to_vertex_handle(h);
   const TriMesh::FaceHandle gone[2] = {mesh_.face_handle(h), mesh_.opposite_face_handle(h)};
-  for (const TriMesh::FaceHandle f : gone)
-    if (f.is_valid()) live_faces_ -= copies_[f.idx()].count();
+  for (const TriMesh::FaceHandle f : gone) {
+    if (!f.is_valid()) continue;
+    live_faces_ -= copies_[f.idx()].count();
+    grid_.erase(static_cast<std::uint32_t>(f.idx()));
+  }
   quadrics_[v1.idx()] += quadrics_[v0.idx()];
   mesh_.collapse(h);
   for (auto f : mesh_.vf_range(v1)) insert_into_grid(f);
