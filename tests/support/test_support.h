@@ -22,6 +22,12 @@ TriangleSoup non_manifold_soup();
 /// Unit cube split into 6 positively oriented tets (8 vertices), labels 1..6.
 TetMesh cube_tets();
 
+/// Kuhn subdivision of the grid of cells^3 cubes of side `step` from
+/// (lo, lo, lo): every cell split into 6 positive tets around its main
+/// diagonal, so neighbouring cells agree on their shared faces. Vertex
+/// (i, j, k) has index (k * (cells + 1) + j) * (cells + 1) + i.
+TetMesh kuhn_grid(double lo, double step, int cells);
+
 /// A fresh empty directory for one test, removed when the object dies.
 class TempDir {
  public:

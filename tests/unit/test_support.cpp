@@ -44,6 +44,28 @@ TetMesh cube_tets() {
   return mesh;
 }
 
+TetMesh kuhn_grid(double lo, double step, int cells) {
+  TetMesh grid;
+  const int n = cells + 1;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) grid.positions.emplace_back(lo + i * step, lo + j * step, lo + k * step);
+  const auto id = [n](int i, int j, int k) { return Index((k * n + j) * n + i); };
+  const TetMesh cell = cube_tets();
+  for (int k = 0; k < cells; ++k)
+    for (int j = 0; j < cells; ++j)
+      for (int i = 0; i < cells; ++i)
+        for (const Tet& t : cell.tets) {
+          Tet g{};
+          for (int c = 0; c < 4; ++c) {
+            const Vec3d& p = cell.positions[t[c]];
+            g[c] = id(i + int(p.x()), j + int(p.y()), k + int(p.z()));
+          }
+          grid.tets.push_back(g);
+        }
+  return grid;
+}
+
 TempDir::TempDir(const std::string& name) {
   static std::mt19937_64 rng(std::random_device{}());
   path_ = std::filesystem::temp_directory_path() / ("mr_test_" + name + "_" + std::to_string(rng()));

@@ -28,30 +28,7 @@ constexpr double kGridLo = -0.5;
 constexpr double kGridStep = 0.25;
 constexpr int kGridCells = 8;  // the grid spans [-0.5, 1.5]^3; the unit cube is inside
 
-// Kuhn subdivision of a regular grid: every cell split into 6 tets around its
-// main diagonal, so neighbouring cells agree on their shared faces.
-TetMesh kuhn_grid() {
-  TetMesh grid;
-  const int n = kGridCells + 1;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        grid.positions.emplace_back(kGridLo + i * kGridStep, kGridLo + j * kGridStep, kGridLo + k * kGridStep);
-  const auto id = [n](int i, int j, int k) { return Index((k * n + j) * n + i); };
-  const TetMesh cell = test::cube_tets();
-  for (int k = 0; k < kGridCells; ++k)
-    for (int j = 0; j < kGridCells; ++j)
-      for (int i = 0; i < kGridCells; ++i)
-        for (const Tet& t : cell.tets) {
-          Tet g{};
-          for (int c = 0; c < 4; ++c) {
-            const Vec3d& p = cell.positions[t[c]];
-            g[c] = id(i + int(p.x()), j + int(p.y()), k + int(p.z()));
-          }
-          grid.tets.push_back(g);
-        }
-  return grid;
-}
+TetMesh kuhn_grid() { return test::kuhn_grid(kGridLo, kGridStep, kGridCells); }
 
 bool in_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
   const Vec3d n = (b - a).cross(c - a);

@@ -43,31 +43,41 @@ Vec3d input_normal(const TriangleSoup& input, std::uint32_t id) {
 }
 
 // +1 when face k of tet t, oriented out of t, runs like input triangle id,
-// -1 when against it. Decided by the exact side of the tet's opposite corner
-// with respect to the triangle's plane (the face's own normal is noise for
-// the tiny faces rounding leaves between nearly coincident cut points);
-// from the neighbour's opposite corner when that one is on the plane; from
-// the normals when both are.
+// -1 when against it. Decided by the exact side, with respect to the
+// triangle's plane, of the opposite corner of t or of its neighbour across
+// the face, whichever lies farther from the plane (the face's own normal is
+// noise for the tiny faces rounding leaves between nearly coincident cut
+// points); from the normals when both corners are on the plane. Rounding
+// and collapses moved the face off the plane by a little, so a corner that
+// is nearly on the plane (a sliver's) may be on the wrong side of it: on
+// thingi10k/1514499 trusting the tet's own corner first broke the chain of
+// a closed input (edges not run along as often each way).
 int face_direction(const Mesh& mesh, Index t, int k, const TriangleSoup& input, std::uint32_t id,
                    const Vec3d& face_normal) {
   const Triangle& tri = input.triangles[id];
+  const Vec3d normal = input_normal(input, id);
+  const Vec3d& origin = input.positions[tri[0]];
   const auto side = [&](Index v) {
     return orient3d(HybridPoint(input.positions[tri[0]]), HybridPoint(input.positions[tri[1]]),
                     HybridPoint(input.positions[tri[2]]), mesh.position(v));
   };
-  // Corner below the plane: the outward normal across the face points up.
-  const int own = side(mesh.tet(t)[k]);
-  if (own != 0) return -own;
+  const auto distance = [&](Index v) { return std::abs((mesh.position(v).approx - origin).dot(normal)); };
+  // A corner below the plane on t's side: the outward normal points up;
+  // below it on the neighbour's side: the outward normal points down.
+  int direction = 0;
+  double farthest = -1.0;
+  const Index own = mesh.tet(t)[k];
+  if (const int s = side(own); s != 0) {
+    direction = -s;
+    farthest = distance(own);
+  }
   const Index n = mesh.neighbour(t, k);
   if (n != kNoTet) {
-    const auto corners = mesh.face_vertices(t, k);
-    for (const Index v : mesh.tet(n)) {
-      if (std::find(corners.begin(), corners.end(), v) != corners.end()) continue;
-      const int other = side(v);
-      if (other != 0) return other;
-    }
+    const Index other = mesh.tet(n)[mesh.face_towards(n, t)];
+    if (const int s = side(other); s != 0 && distance(other) > farthest) direction = s;
   }
-  return face_normal.dot(input_normal(input, id)) < 0 ? -1 : 1;
+  if (direction != 0) return direction;
+  return face_normal.dot(normal) < 0 ? -1 : 1;
 }
 
 }  // namespace

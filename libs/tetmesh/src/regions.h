@@ -38,6 +38,7 @@ bool is_cycle(const TriangleSoup& surface);
 /// and far cheaper: most tets lie near the surface, where each query
 /// descends to the triangles.
 TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tree, WindingRule rule);
+
 /// The number of tets of `mesh` that are not strictly positively oriented
 /// on their double coordinates (exact orient3d; parallel).
 std::size_t count_non_positive_tets(const TetMesh& mesh);

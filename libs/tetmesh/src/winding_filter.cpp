@@ -1,8 +1,15 @@
 #include <mr/tetmesh/winding_filter.h>
 
 #include <mr/core/errors.h>
+#include <mr/spatial/aabb_tree.h>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <string>
 
 namespace mr::tetmesh {
@@ -34,6 +41,119 @@ TetClassification classify_tets(const Mesh& mesh, const WindingNumberTree& tree,
   for (std::size_t i = 0; i < slots.size(); ++i) {
     result.winding[slots[i]] = values[i];
     if (is_inside(values[i], rule)) {
+      result.keep[slots[i]] = 1;
+      ++result.kept;
+    }
+  }
+  return result;
+}
+
+namespace {
+
+// Unit normal of triangle `id` (zero when it is degenerate).
+Vec3d unit_normal(const TriangleSoup& soup, std::uint32_t id) {
+  const Triangle& t = soup.triangles[id];
+  return (soup.positions[t[1]] - soup.positions[t[0]]).cross(soup.positions[t[2]] - soup.positions[t[0]]).normalized();
+}
+
+}  // namespace
+
+std::vector<double> tracked_surface_offsets(const Mesh& mesh, const TriangleSoup& input) {
+  std::vector<double> offsets(input.triangles.size(), 0.0);
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    for (int k = 0; k < 4; ++k) {
+      if (!mesh.is_surface_face(t, k)) continue;
+      const auto corners = mesh.face_vertices(t, k);
+      for (const std::uint32_t id : mesh.surface_ids(t, k)) {
+        const Vec3d normal = unit_normal(input, id);
+        if (normal.squaredNorm() == 0.0) continue;  // a degenerate triangle adds nothing to the chain
+        const Vec3d& origin = input.positions[input.triangles[id][0]];
+        for (const Index v : corners) {
+          offsets[id] = std::max(offsets[id], std::abs((mesh.position(v).approx - origin).dot(normal)));
+        }
+      }
+    }
+  }
+  return offsets;
+}
+
+namespace {
+
+// Whether points lie within kOffsetMargin times its offset of some
+// triangle: the triangles grouped by the binary exponent of their offset,
+// so that one far-moved point does not widen the guard of all the others.
+class OffsetGuard {
+ public:
+  OffsetGuard(const TriangleSoup& input, std::span<const char> left_out, std::span<const double> offsets) {
+    std::map<int, TriangleSoup> groups;
+    std::map<int, double> radii;
+    for (std::size_t i = 0; i < input.triangles.size(); ++i) {
+      if (left_out[i] != 0) continue;
+      const int exponent = offsets[i] > 0.0 ? std::ilogb(offsets[i]) : std::numeric_limits<int>::min();
+      TriangleSoup& group = groups[exponent];
+      for (const Index v : input.triangles[i]) group.positions.push_back(input.positions[v]);
+      const Index base = static_cast<Index>(group.positions.size() - 3);
+      group.triangles.push_back({base, base + 1, base + 2});
+      radii[exponent] = std::max(radii[exponent], kOffsetMargin * offsets[i]);
+    }
+    for (const auto& [exponent, group] : groups) {
+      trees_.emplace_back(group);
+      radii_.push_back(radii[exponent]);
+    }
+  }
+
+  bool near(const Vec3d& p) const {
+    for (std::size_t g = 0; g < trees_.size(); ++g) {
+      if (trees_[g].any_within(p, radii_[g])) return true;
+    }
+    return false;
+  }
+
+ private:
+  std::vector<spatial::AabbTree> trees_;
+  std::vector<double> radii_;
+};
+
+}  // namespace
+
+TetClassification classify_tets_near_input(const Mesh& mesh, const WindingNumberTree& tracked,
+                                           const TriangleSoup& input, std::span<const char> left_out,
+                                           WindingRule rule, std::size_t* near_queries) {
+  std::vector<Index> slots;
+  slots.reserve(mesh.num_tets());
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (mesh.tet_alive(t)) slots.push_back(t);
+  }
+  const OffsetGuard guard(input, left_out, tracked_surface_offsets(mesh, input));
+  std::vector<Vec3d> centroids(slots.size());
+  std::vector<char> near(slots.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, slots.size(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        centroids[i] = tet_centroid(mesh, slots[i]);
+                        near[i] = guard.near(centroids[i]);
+                      }
+                    });
+  std::vector<Vec3d> far_points, near_points;
+  for (std::size_t i = 0; i < slots.size(); ++i) (near[i] ? near_points : far_points).push_back(centroids[i]);
+  TriangleSoup chain;
+  chain.positions = input.positions;
+  for (std::size_t i = 0; i < input.triangles.size(); ++i) {
+    if (left_out[i] == 0) chain.triangles.push_back(input.triangles[i]);
+  }
+  const std::vector<double> far_values = WindingNumberTree(chain).evaluate(far_points);
+  const std::vector<double> near_values = tracked.evaluate(near_points);
+  if (near_queries != nullptr) *near_queries = near_points.size();
+
+  TetClassification result;
+  result.winding.assign(mesh.tet_slots(), 0.0);
+  result.keep.assign(mesh.tet_slots(), 0);
+  std::size_t next_far = 0, next_near = 0;
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    const double w = near[i] ? near_values[next_near++] : far_values[next_far++];
+    result.winding[slots[i]] = w;
+    if (is_inside(w, rule)) {
       result.keep[slots[i]] = 1;
       ++result.kept;
     }

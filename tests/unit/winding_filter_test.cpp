@@ -1,0 +1,125 @@
+// Stage 6 on meshes built in code: the filter of an open tracked surface
+// asks the input triangles it embeds, and the tracked surface only near
+// the places where it strayed from them.
+
+#include "test_support.h"
+
+#include <mr/tetmesh/convert.h>
+#include <mr/tetmesh/winding_filter.h>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+using namespace mr;
+using namespace mr::tetmesh;
+
+namespace {
+
+constexpr double kLo = -0.5;
+constexpr double kStep = 0.25;
+constexpr int kCells = 8;  // the grid spans [-0.5, 1.5]^3
+
+bool on_open_box(const Vec3d& p) {
+  const bool inside = p.minCoeff() >= 0.0 && p.maxCoeff() <= 1.0;
+  const bool on_side = p.x() == 0.0 || p.x() == 1.0 || p.y() == 0.0 || p.y() == 1.0 || p.z() == 0.0;
+  return inside && on_side;
+}
+
+// The grid faces on the unit cube without its top (z = 1): the input soup,
+// oriented outward, each face marked with its triangle's id.
+TriangleSoup mark_open_box(Mesh& mesh) {
+  TriangleSoup box;
+  std::map<std::array<Index, 3>, std::uint32_t> ids;
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    for (int k = 0; k < 4; ++k) {
+      std::array<Index, 3> f = mesh.face_vertices(t, k);
+      const Vec3d a = mesh.position(f[0]).approx, b = mesh.position(f[1]).approx, c = mesh.position(f[2]).approx;
+      if (!on_open_box(a) || !on_open_box(b) || !on_open_box(c)) continue;
+      const Vec3d normal = (b - a).cross(c - a);
+      const Vec3d centre = (a + b + c) / 3.0;
+      // A face on the box lies in one of its planes: the normal is along an axis.
+      if (normal.cwiseAbs().maxCoeff() != normal.norm()) continue;
+      int axis = 0;
+      normal.cwiseAbs().maxCoeff(&axis);
+      if (centre[axis] != 0.0 && centre[axis] != 1.0) continue;
+      if (axis == 2 && centre[axis] == 1.0) continue;  // the open top
+      std::array<Index, 3> key = f;
+      std::sort(key.begin(), key.end());
+      auto [it, added] = ids.try_emplace(key, static_cast<std::uint32_t>(box.triangles.size()));
+      if (added) {
+        if (normal.dot(centre - Vec3d(0.5, 0.5, 0.5)) < 0) std::swap(f[1], f[2]);
+        box.triangles.push_back({f[0], f[1], f[2]});
+      }
+      const std::uint32_t id = it->second;
+      mesh.set_surface_ids(t, k, std::span<const std::uint32_t>(&id, 1));
+    }
+  }
+  for (Index v = 0; v < mesh.vertex_slots(); ++v) box.positions.push_back(mesh.position(v).approx);
+  return box;
+}
+
+// The marked faces with the mesh's current positions, oriented like their
+// triangles: what the tracked surface is.
+TriangleSoup tracked_faces(const Mesh& mesh, const TriangleSoup& input) {
+  TriangleSoup tracked = input;
+  for (Index v = 0; v < mesh.vertex_slots(); ++v) tracked.positions[v] = mesh.position(v).approx;
+  return tracked;
+}
+
+}  // namespace
+
+TEST_CASE("winding filter: an open surface is asked of the input away from where the mesh moved it",
+          "[tetmesh][filter]") {
+  Mesh mesh = from_tet_mesh(test::kuhn_grid(kLo, kStep, kCells));
+  const TriangleSoup input = mark_open_box(mesh);
+  REQUIRE(input.triangles.size() == 5 * 4 * 4 * 2);
+  const std::vector<char> none_left_out(input.triangles.size(), 0);
+
+  SECTION("embedded exactly: no tet needs the tracked surface, and the result is the same") {
+    REQUIRE(std::all_of(tracked_surface_offsets(mesh, input).begin(), tracked_surface_offsets(mesh, input).end(),
+                        [](double d) { return d == 0.0; }));
+    const WindingNumberTree tracked(tracked_faces(mesh, input));
+    std::size_t near = 1;
+    const TetClassification fast = classify_tets_near_input(mesh, tracked, input, none_left_out,
+                                                            WindingRule::absolute, &near);
+    const TetClassification all = classify_tets(mesh, tracked, WindingRule::absolute);
+    CHECK(near == 0);
+    CHECK(fast.keep == all.keep);
+    CHECK(fast.winding == all.winding);
+    // The open box keeps the tets inside it: (4 x 4 x 4 cells) x 6.
+    CHECK(fast.kept == 4 * 4 * 4 * 6);
+  }
+
+  SECTION("a moved vertex: tets near it ask the tracked surface, the others agree with it") {
+    const Index bottom_centre = (2 * (kCells + 1) + 4) * (kCells + 1) + 4;  // (0.5, 0.5, 0)
+    REQUIRE(mesh.position(bottom_centre).approx == Vec3d(0.5, 0.5, 0.0));
+    mesh.position(bottom_centre) = HybridPoint(Vec3d(0.5, 0.5, -0.01));
+    const std::vector<double> offsets = tracked_surface_offsets(mesh, input);
+    CHECK(*std::max_element(offsets.begin(), offsets.end()) == Approx(0.01));
+    CHECK(std::count(offsets.begin(), offsets.end(), 0.0) == static_cast<long>(input.triangles.size()) - 6);  // its star on the bottom
+
+    const WindingNumberTree tracked(tracked_faces(mesh, input));
+    std::size_t near = 0;
+    const TetClassification fast = classify_tets_near_input(mesh, tracked, input, none_left_out,
+                                                            WindingRule::absolute, &near);
+    const TetClassification all = classify_tets(mesh, tracked, WindingRule::absolute);
+    CHECK(near > 0);
+    CHECK(near < mesh.num_tets() / 10);
+    CHECK(fast.keep == all.keep);
+    double largest_difference = 0.0;
+    for (Index t = 0; t < mesh.tet_slots(); ++t) {
+      largest_difference = std::max(largest_difference, std::abs(fast.winding[t] - all.winding[t]));
+    }
+    CHECK(largest_difference < 0.01);
+  }
+
+  SECTION("triangles left out are not part of the chain") {
+    std::vector<char> left_out(input.triangles.size(), 1);
+    const WindingNumberTree tracked(TriangleSoup{});
+    const TetClassification fast = classify_tets_near_input(mesh, tracked, input, left_out, WindingRule::absolute);
+    CHECK(fast.kept == 0);
+  }
+}
