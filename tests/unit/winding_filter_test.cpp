@@ -22,22 +22,21 @@ constexpr double kLo = -0.5;
 constexpr double kStep = 0.25;
 constexpr int kCells = 8;  // the grid spans [-0.5, 1.5]^3
 
-bool on_open_box(const Vec3d& p) {
+bool on_box(const Vec3d& p) {
   const bool inside = p.minCoeff() >= 0.0 && p.maxCoeff() <= 1.0;
-  const bool on_side = p.x() == 0.0 || p.x() == 1.0 || p.y() == 0.0 || p.y() == 1.0 || p.z() == 0.0;
-  return inside && on_side;
+  return inside && (p.minCoeff() == 0.0 || p.maxCoeff() == 1.0);
 }
 
-// The grid faces on the unit cube without its top (z = 1): the input soup,
-// oriented outward, each face marked with its triangle's id.
-TriangleSoup mark_open_box(Mesh& mesh) {
+// The grid faces on the unit cube, without its top (z = 1) when `open`: the
+// input soup, oriented outward, each face marked with its triangle's id.
+TriangleSoup mark_box(Mesh& mesh, bool open = true) {
   TriangleSoup box;
   std::map<std::array<Index, 3>, std::uint32_t> ids;
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
     for (int k = 0; k < 4; ++k) {
       std::array<Index, 3> f = mesh.face_vertices(t, k);
       const Vec3d a = mesh.position(f[0]).approx, b = mesh.position(f[1]).approx, c = mesh.position(f[2]).approx;
-      if (!on_open_box(a) || !on_open_box(b) || !on_open_box(c)) continue;
+      if (!on_box(a) || !on_box(b) || !on_box(c)) continue;
       const Vec3d normal = (b - a).cross(c - a);
       const Vec3d centre = (a + b + c) / 3.0;
       // A face on the box lies in one of its planes: the normal is along an axis.
@@ -45,7 +44,7 @@ TriangleSoup mark_open_box(Mesh& mesh) {
       int axis = 0;
       normal.cwiseAbs().maxCoeff(&axis);
       if (centre[axis] != 0.0 && centre[axis] != 1.0) continue;
-      if (axis == 2 && centre[axis] == 1.0) continue;  // the open top
+      if (open && axis == 2 && centre[axis] == 1.0) continue;  // the open top
       std::array<Index, 3> key = f;
       std::sort(key.begin(), key.end());
       auto [it, added] = ids.try_emplace(key, static_cast<std::uint32_t>(box.triangles.size()));
@@ -74,7 +73,7 @@ TriangleSoup tracked_faces(const Mesh& mesh, const TriangleSoup& input) {
 TEST_CASE("winding filter: an open surface is asked of the input away from where the mesh moved it",
           "[tetmesh][filter]") {
   Mesh mesh = from_tet_mesh(test::kuhn_grid(kLo, kStep, kCells));
-  const TriangleSoup input = mark_open_box(mesh);
+  const TriangleSoup input = mark_box(mesh);
   REQUIRE(input.triangles.size() == 5 * 4 * 4 * 2);
   const std::vector<char> none_left_out(input.triangles.size(), 0);
 
@@ -122,4 +121,35 @@ TEST_CASE("winding filter: an open surface is asked of the input away from where
     const TetClassification fast = classify_tets_near_input(mesh, tracked, input, left_out, WindingRule::absolute);
     CHECK(fast.kept == 0);
   }
+}
+
+TEST_CASE("winding filter: a closed input with a triangle left out is decided per region, the hole plugged",
+          "[tetmesh][filter]") {
+  Mesh mesh = from_tet_mesh(test::kuhn_grid(kLo, kStep, kCells));
+  const TriangleSoup box = mark_box(mesh, /*open=*/false);
+  REQUIRE(box.triangles.size() == 6 * 4 * 4 * 2);
+  // Leave triangle 0 out: unmark its face, which opens the tracked surface.
+  TriangleSoup hole;
+  hole.positions = box.positions;
+  hole.triangles.push_back(box.triangles[0]);
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    for (int k = 0; k < 4; ++k) {
+      const auto ids = mesh.surface_ids(t, k);
+      if (ids.size() == 1 && ids.front() == 0) mesh.set_surface_ids(t, k, {});
+    }
+  }
+  const WindingNumberTree input(box);
+  const std::vector<char> barrier = tets_near(mesh, hole);
+  const auto barrier_tets = std::count(barrier.begin(), barrier.end(), 1);
+  CHECK(barrier_tets >= 2);  // at least the two tets on either side of the hole
+  CHECK(barrier_tets < static_cast<long>(mesh.num_tets()) / 5);  // the doubled bounding spheres reach a cell or two
+
+  // Without the barrier the inside leaks out through the hole: one region.
+  const TetClassification leaking = classify_regions(mesh, input, WindingRule::absolute);
+  CHECK(leaking.kept == 0);
+  // With it, the box is kept whole, as every tet's own winding number says.
+  const TetClassification plugged = classify_regions(mesh, input, WindingRule::absolute, barrier);
+  const TetClassification per_tet = classify_tets(mesh, input, WindingRule::absolute);
+  CHECK(plugged.kept == 4 * 4 * 4 * 6);
+  CHECK(plugged.keep == per_tet.keep);
 }

@@ -3,8 +3,10 @@
 #include <mr/core/orientation.h>
 
 #include <mr/kernel/predicates.h>
+#include <mr/spatial/aabb_tree.h>
 
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -12,20 +14,22 @@
 
 namespace mr::tetmesh::detail {
 
-std::vector<std::int32_t> region_labels(const Mesh& mesh) {
+std::vector<std::int32_t> region_labels(const Mesh& mesh, std::span<const char> barrier) {
+  const auto blocked = [&](Index t) { return !barrier.empty() && barrier[t] != 0; };
   std::vector<std::int32_t> labels(mesh.tet_slots(), 0);
   std::int32_t next = 0;
   std::vector<Index> stack;
   for (Index seed = 0; seed < mesh.tet_slots(); ++seed) {
     if (!mesh.tet_alive(seed) || labels[seed] != 0) continue;
     labels[seed] = ++next;
+    if (blocked(seed)) continue;
     stack.push_back(seed);
     while (!stack.empty()) {
       const Index t = stack.back();
       stack.pop_back();
       for (int k = 0; k < 4; ++k) {
         const Index n = mesh.neighbour(t, k);
-        if (n == kNoTet || labels[n] != 0 || mesh.is_surface_face(t, k)) continue;
+        if (n == kNoTet || labels[n] != 0 || mesh.is_surface_face(t, k) || blocked(n)) continue;
         labels[n] = next;
         stack.push_back(n);
       }
@@ -138,7 +142,7 @@ TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const
   return surface;
 }
 
-bool is_cycle(const TriangleSoup& surface) {
+std::vector<std::array<Index, 2>> unbalanced_edges(const TriangleSoup& surface) {
   // +1 for each use of edge (lo, hi) from lo to hi, -1 the other way.
   std::vector<std::pair<std::array<Index, 2>, int>> uses;
   uses.reserve(3 * surface.triangles.size());
@@ -149,18 +153,69 @@ bool is_cycle(const TriangleSoup& surface) {
     }
   }
   std::sort(uses.begin(), uses.end());
+  std::vector<std::array<Index, 2>> unbalanced;
   for (std::size_t i = 0; i < uses.size();) {
     int sum = 0;
     std::size_t j = i;
     for (; j < uses.size() && uses[j].first == uses[i].first; ++j) sum += uses[j].second;
-    if (sum != 0) return false;
+    if (sum != 0) unbalanced.push_back(uses[i].first);
     i = j;
   }
-  return true;
+  return unbalanced;
 }
 
-TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tree, WindingRule rule) {
-  const std::vector<std::int32_t> labels = region_labels(mesh);
+bool is_cycle(const TriangleSoup& surface) { return unbalanced_edges(surface).empty(); }
+
+bool edges_near(const TriangleSoup& surface, std::span<const std::array<Index, 2>> edges,
+                const TriangleSoup& triangles, double radius) {
+  if (triangles.triangles.empty()) return edges.empty();
+  const spatial::AabbTree tree(triangles);
+  return std::all_of(edges.begin(), edges.end(), [&](const std::array<Index, 2>& e) {
+    return tree.any_within(0.5 * (surface.positions[e[0]] + surface.positions[e[1]]), radius);
+  });
+}
+
+std::size_t count_non_positive_tets(const TetMesh& mesh) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, mesh.tets.size()), std::size_t{0},
+      [&](const tbb::blocked_range<std::size_t>& range, std::size_t count) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          const Tet& t = mesh.tets[i];
+          count += orient3d(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]],
+                            mesh.positions[t[3]]) <= 0;
+        }
+        return count;
+      },
+      std::plus<>());
+}
+
+}  // namespace mr::tetmesh::detail
+
+namespace mr::tetmesh {
+
+std::vector<char> tets_near(const Mesh& mesh, const TriangleSoup& triangles) {
+  std::vector<char> near(mesh.tet_slots(), 0);
+  if (triangles.triangles.empty()) return near;
+  const spatial::AabbTree tree(triangles);
+  tbb::parallel_for(tbb::blocked_range<Index>(0, static_cast<Index>(mesh.tet_slots()), 256),
+                    [&](const tbb::blocked_range<Index>& range) {
+                      for (Index t = range.begin(); t != range.end(); ++t) {
+                        if (!mesh.tet_alive(t)) continue;
+                        const Vec3d centre = tet_centroid(mesh, t);
+                        double radius = 0.0;
+                        for (const Index v : mesh.tet(t)) {
+                          radius = std::max(radius, (mesh.position(v).approx - centre).norm());
+                        }
+                        // Doubled: the corners' doubles and the distance are rounded.
+                        near[t] = tree.any_within(centre, 2.0 * radius);
+                      }
+                    });
+  return near;
+}
+
+TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tree, WindingRule rule,
+                                   std::span<const char> barrier) {
+  const std::vector<std::int32_t> labels = detail::region_labels(mesh, barrier);
   const std::int32_t regions = labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end());
   std::vector<Index> largest(static_cast<std::size_t>(regions) + 1, kNoTet);
   std::vector<double> largest_volume(largest.size(), -1.0);
@@ -194,18 +249,4 @@ TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tr
   return result;
 }
 
-std::size_t count_non_positive_tets(const TetMesh& mesh) {
-  return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, mesh.tets.size()), std::size_t{0},
-      [&](const tbb::blocked_range<std::size_t>& range, std::size_t count) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-          const Tet& t = mesh.tets[i];
-          count += orient3d(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]],
-                            mesh.positions[t[3]]) <= 0;
-        }
-        return count;
-      },
-      std::plus<>());
-}
-
-}  // namespace mr::tetmesh::detail
+}  // namespace mr::tetmesh

@@ -7,6 +7,7 @@
 #include <mr/tetmesh/mesh.h>
 #include <mr/tetmesh/winding_filter.h>
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -14,8 +15,10 @@ namespace mr::tetmesh::detail {
 
 /// Per tet slot, a label numbering the sets of tets connected through faces
 /// that are not tracked surface: 1, 2, ... in order of their smallest tet
-/// slot; 0 for removed slots.
-std::vector<std::int32_t> region_labels(const Mesh& mesh);
+/// slot; 0 for removed slots. A tet with barrier[t] != 0 is a set of its own.
+std::vector<std::int32_t> region_labels(const Mesh& mesh, std::span<const char> barrier = {});
+
+
 
 /// The tracked-surface faces of the tets with keep[t] != 0 (every live tet
 /// when keep is empty), each once, oriented like the input triangle of its
@@ -32,12 +35,13 @@ TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const
 /// as often one way as the other. The surface is then a closed cycle: its
 /// winding number is an integer, constant on each region it bounds.
 bool is_cycle(const TriangleSoup& surface);
-/// The winding-number filter decided once per region of region_labels, at
-/// the centroid of its largest tet (ties: the smallest slot). Equal to
-/// classify_tets when `tree` is built on a tracked surface that is a cycle,
-/// and far cheaper: most tets lie near the surface, where each query
-/// descends to the triangles.
-TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tree, WindingRule rule);
+/// The edges (vertex pairs, lower index first) of `surface` not run along
+/// as often one way as the other: empty for a cycle.
+std::vector<std::array<Index, 2>> unbalanced_edges(const TriangleSoup& surface);
+/// Whether the midpoint of every edge of `surface` in `edges` is within
+/// `radius` of a triangle of `triangles`.
+bool edges_near(const TriangleSoup& surface, std::span<const std::array<Index, 2>> edges,
+                const TriangleSoup& triangles, double radius);
 
 /// The number of tets of `mesh` that are not strictly positively oriented
 /// on their double coordinates (exact orient3d; parallel).

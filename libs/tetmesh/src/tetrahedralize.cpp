@@ -213,6 +213,15 @@ Mesh embed_and_improve(const TriangleSoup& surface, const SurfaceBounds& bounds,
   }
 }
 
+// How far from a left-out triangle an edge of the tracked surface at the
+// rim of its hole can be: the tracked faces of its neighbours end on its
+// edges, moved off them by no more than the largest offset.
+double hole_reach(const Mesh& mesh, const TriangleSoup& surface, const DerivedParameters& derived) {
+  const std::vector<double> offsets = tracked_surface_offsets(mesh, surface);
+  const double largest = offsets.empty() ? 0.0 : *std::max_element(offsets.begin(), offsets.end());
+  return kOffsetMargin * largest + 1e-9 * derived.epsilon;
+}
+
 // Faces flipped against their neighbours would make the winding number dip
 // inside the solid; orienting patches coherently first keeps the filter sound.
 TriangleSoup oriented_input(const TriangleSoup& input, PipelineStats& stats, const Logger& logger) {
@@ -252,24 +261,43 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
       // centroid fell between the two surfaces, and their far faces left
       // the envelope.
       const TriangleSoup tracked = detail::tracked_surface(mesh, {}, surface, detail::Multiplicity::as_chain);
-      const WindingNumberTree tree(tracked);
       const WindingRule rule = options.tetrahedralize.winding_rule;
       // A closed tracked surface (as most inputs give) needs one query per
-      // region; an open one has a winding number that varies inside a
-      // region, so every tet is queried, most of them of the input
-      // triangles it embeds (regions.h).
-      const bool closed = detail::is_cycle(tracked);
+      // region. So does a closed input whose tracked surface is not closed
+      // (triangles left out, or faces whose direction rounding blurred),
+      // asked of the input itself, with the tets around the left-out
+      // triangles deciding each for itself. An open input has a winding
+      // number that varies inside a region, so every tet is queried, most
+      // of them of the input triangles it embeds (winding_filter.h).
+      const std::vector<std::array<Index, 2>> open_edges = detail::unbalanced_edges(tracked);
+      const bool closed = open_edges.empty();
+      TriangleSoup holes;
+      holes.positions = surface.positions;
+      for (std::size_t i = 0; i < surface.triangles.size(); ++i) {
+        if (left_out[i] != 0) holes.triangles.push_back(surface.triangles[i]);
+      }
+      // The tracked surface must be open only at the holes, or regions
+      // would leak into each other (thingi10k/1514499 loses tracked faces
+      // somewhere with none left out: one region took in 282k tets whose
+      // own winding number said inside).
+      const bool closed_input = !closed && detail::is_cycle(weld_identical_vertices(surface)) &&
+                                detail::edges_near(tracked, open_edges, holes, hole_reach(mesh, surface, derived));
       TetClassification classes;
       if (closed) {
-        classes = detail::classify_regions(mesh, tree, rule);
+        classes = classify_regions(mesh, WindingNumberTree(tracked), rule);
+      } else if (closed_input) {
+        const std::vector<char> barrier = tets_near(mesh, holes);
+        classes = classify_regions(mesh, WindingNumberTree(surface), rule, barrier);
+        count(timer, "barrier_tets", static_cast<std::size_t>(std::count(barrier.begin(), barrier.end(), 1)));
       } else {
         std::size_t near_queries = 0;
-        classes = classify_tets_near_input(mesh, tree, surface, left_out, rule, &near_queries);
+        classes = classify_tets_near_input(mesh, WindingNumberTree(tracked), surface, left_out, rule, &near_queries);
         count(timer, "near_surface_queries", near_queries);
       }
       keep = classes.keep;
       count(timer, "kept_tets", classes.kept);
       count(timer, "closed_surface", closed ? 1 : 0);
+      count(timer, "closed_input", closed_input ? 1 : 0);
     }
   }
   {

@@ -53,6 +53,22 @@ inline constexpr double kOffsetMargin = 16.0;
 TetClassification classify_tets_near_input(const Mesh& mesh, const WindingNumberTree& tracked,
                                            const TriangleSoup& input, std::span<const char> left_out,
                                            WindingRule rule, std::size_t* near_queries = nullptr);
+/// Per tet slot, 1 for the live tets that may meet a triangle of
+/// `triangles` (their bounding sphere, doubled, reaches one).
+std::vector<char> tets_near(const Mesh& mesh, const TriangleSoup& triangles);
+
+/// The winding-number filter decided once per region (tets connected through faces
+/// that are not tracked surface; a tet with barrier[t] != 0 is a region of its own), at
+/// the centroid of its largest tet (ties: the smallest slot). Equal to
+/// classify_tets when `tree` is built on a tracked surface that is a cycle,
+/// and far cheaper: most tets lie near the surface, where each query
+/// descends to the triangles. Also sound when `tree` is built on a closed
+/// input some of whose triangles were left out (so the tracked surface has
+/// holes), with the tets near those triangles as `barrier`: they plug the
+/// holes between regions, and each is decided at its own centroid.
+TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tree, WindingRule rule,
+                                   std::span<const char> barrier = {});
+
 /// The tets with keep[t] != 0 and the vertices they use (renumbered in slot
 /// order), as doubles. Throws mr::UsageError if keep has the wrong size or
 /// keeps a removed slot, mr::RunError if a kept vertex is still rational.
