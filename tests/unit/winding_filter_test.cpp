@@ -78,11 +78,11 @@ TEST_CASE("winding filter: an open surface is asked of the input away from where
   const std::vector<char> none_left_out(input.triangles.size(), 0);
 
   SECTION("embedded exactly: no tet needs the tracked surface, and the result is the same") {
-    REQUIRE(std::all_of(tracked_surface_offsets(mesh, input).begin(), tracked_surface_offsets(mesh, input).end(),
-                        [](double d) { return d == 0.0; }));
+    const std::vector<double> offsets = tracked_surface_offsets(mesh, input);
+    REQUIRE(std::all_of(offsets.begin(), offsets.end(), [](double d) { return d == 0.0; }));
     const WindingNumberTree tracked(tracked_faces(mesh, input));
     std::size_t near = 1;
-    const TetClassification fast = classify_tets_near_input(mesh, tracked, input, none_left_out,
+    const TetClassification fast = classify_tets_near_input(mesh, tracked, input, none_left_out, offsets,
                                                             WindingRule::absolute, &near);
     const TetClassification all = classify_tets(mesh, tracked, WindingRule::absolute);
     CHECK(near == 0);
@@ -102,7 +102,7 @@ TEST_CASE("winding filter: an open surface is asked of the input away from where
 
     const WindingNumberTree tracked(tracked_faces(mesh, input));
     std::size_t near = 0;
-    const TetClassification fast = classify_tets_near_input(mesh, tracked, input, none_left_out,
+    const TetClassification fast = classify_tets_near_input(mesh, tracked, input, none_left_out, offsets,
                                                             WindingRule::absolute, &near);
     const TetClassification all = classify_tets(mesh, tracked, WindingRule::absolute);
     CHECK(near > 0);
@@ -118,7 +118,9 @@ TEST_CASE("winding filter: an open surface is asked of the input away from where
   SECTION("triangles left out are not part of the chain") {
     std::vector<char> left_out(input.triangles.size(), 1);
     const WindingNumberTree tracked(TriangleSoup{});
-    const TetClassification fast = classify_tets_near_input(mesh, tracked, input, left_out, WindingRule::absolute);
+    const TetClassification fast = classify_tets_near_input(mesh, tracked, input, left_out,
+                                                            std::vector<double>(input.triangles.size(), 0.0),
+                                                            WindingRule::absolute);
     CHECK(fast.kept == 0);
   }
 }

@@ -6,7 +6,6 @@
 #include <mr/spatial/aabb_tree.h>
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -38,13 +37,12 @@ std::vector<std::int32_t> region_labels(const Mesh& mesh, std::span<const char> 
   return labels;
 }
 
-namespace {
-
-// Unit normal of input triangle `id`.
 Vec3d input_normal(const TriangleSoup& input, std::uint32_t id) {
   const Triangle& t = input.triangles[id];
   return (input.positions[t[1]] - input.positions[t[0]]).cross(input.positions[t[2]] - input.positions[t[0]]).normalized();
 }
+
+namespace {
 
 // +1 when face k of tet t, oriented out of t, runs like input triangle id,
 // -1 when against it. Decided by the exact side, with respect to the
@@ -190,63 +188,3 @@ std::size_t count_non_positive_tets(const TetMesh& mesh) {
 }
 
 }  // namespace mr::tetmesh::detail
-
-namespace mr::tetmesh {
-
-std::vector<char> tets_near(const Mesh& mesh, const TriangleSoup& triangles) {
-  std::vector<char> near(mesh.tet_slots(), 0);
-  if (triangles.triangles.empty()) return near;
-  const spatial::AabbTree tree(triangles);
-  tbb::parallel_for(tbb::blocked_range<Index>(0, static_cast<Index>(mesh.tet_slots()), 256),
-                    [&](const tbb::blocked_range<Index>& range) {
-                      for (Index t = range.begin(); t != range.end(); ++t) {
-                        if (!mesh.tet_alive(t)) continue;
-                        const Vec3d centre = tet_centroid(mesh, t);
-                        double radius = 0.0;
-                        for (const Index v : mesh.tet(t)) {
-                          radius = std::max(radius, (mesh.position(v).approx - centre).norm());
-                        }
-                        // Doubled: the corners' doubles and the distance are rounded.
-                        near[t] = tree.any_within(centre, 2.0 * radius);
-                      }
-                    });
-  return near;
-}
-
-TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tree, WindingRule rule,
-                                   std::span<const char> barrier) {
-  const std::vector<std::int32_t> labels = detail::region_labels(mesh, barrier);
-  const std::int32_t regions = labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end());
-  std::vector<Index> largest(static_cast<std::size_t>(regions) + 1, kNoTet);
-  std::vector<double> largest_volume(largest.size(), -1.0);
-  for (Index t = 0; t < mesh.tet_slots(); ++t) {
-    if (!mesh.tet_alive(t)) continue;
-    const Tet& c = mesh.tet(t);
-    const Vec3d& a = mesh.position(c[0]).approx;
-    const double volume = (mesh.position(c[1]).approx - a)
-                              .cross(mesh.position(c[2]).approx - a)
-                              .dot(mesh.position(c[3]).approx - a);
-    if (volume > largest_volume[labels[t]]) {
-      largest_volume[labels[t]] = volume;
-      largest[labels[t]] = t;
-    }
-  }
-  std::vector<Vec3d> queries;
-  for (std::int32_t r = 1; r <= regions; ++r) queries.push_back(tet_centroid(mesh, largest[r]));
-  const std::vector<double> values = tree.evaluate(queries);
-  TetClassification result;
-  result.winding.assign(mesh.tet_slots(), 0.0);
-  result.keep.assign(mesh.tet_slots(), 0);
-  for (Index t = 0; t < mesh.tet_slots(); ++t) {
-    if (!mesh.tet_alive(t)) continue;
-    const double w = values[labels[t] - 1];
-    result.winding[t] = w;
-    if (is_inside(w, rule)) {
-      result.keep[t] = 1;
-      ++result.kept;
-    }
-  }
-  return result;
-}
-
-}  // namespace mr::tetmesh

@@ -18,7 +18,8 @@ namespace mr::tetmesh::detail {
 /// slot; 0 for removed slots. A tet with barrier[t] != 0 is a set of its own.
 std::vector<std::int32_t> region_labels(const Mesh& mesh, std::span<const char> barrier = {});
 
-
+/// Unit normal of triangle `id` of `input` (zero when it is degenerate).
+Vec3d input_normal(const TriangleSoup& input, std::uint32_t id);
 
 /// The tracked-surface faces of the tets with keep[t] != 0 (every live tet
 /// when keep is empty), each once, oriented like the input triangle of its

@@ -213,13 +213,57 @@ Mesh embed_and_improve(const TriangleSoup& surface, const SurfaceBounds& bounds,
   }
 }
 
-// How far from a left-out triangle an edge of the tracked surface at the
-// rim of its hole can be: the tracked faces of its neighbours end on its
-// edges, moved off them by no more than the largest offset.
-double hole_reach(const Mesh& mesh, const TriangleSoup& surface, const DerivedParameters& derived) {
+// The filter's decision per tet (stage 6). The winding number of the
+// tracked surface as it is now (after rounding and improvement moved it
+// within the envelope), not of the raw input: its jumps then lie exactly on
+// tracked faces, so the kept tets end there. Filtering with the input kept
+// big tets whose centroid fell between the two surfaces, and their far
+// faces left the envelope.
+// A closed tracked surface (as most inputs give) needs one query per
+// region. So does a closed input whose tracked surface is open only where
+// triangles were left out, asked of the input itself, with the tets around
+// those triangles deciding each for itself. Otherwise the winding number
+// varies inside a region, so every tet is queried, most of them of the
+// input triangles the surface embeds (winding_filter.h).
+TetClassification classify_for_filter(const Mesh& mesh, const TriangleSoup& surface, std::span<const char> left_out,
+                                      const DerivedParameters& derived, WindingRule rule, StageTimer& timer) {
+  const TriangleSoup tracked = detail::tracked_surface(mesh, {}, surface, detail::Multiplicity::as_chain);
+  const std::vector<std::array<Index, 2>> open_edges = detail::unbalanced_edges(tracked);
+  count(timer, "closed_surface", open_edges.empty() ? 1 : 0);
+  if (open_edges.empty()) {
+    count(timer, "closed_input", 0);
+    return classify_regions(mesh, WindingNumberTree(tracked), rule);
+  }
+
+  TriangleSoup holes;
+  holes.positions = surface.positions;
+  for (std::size_t i = 0; i < surface.triangles.size(); ++i) {
+    if (left_out[i] != 0) holes.triangles.push_back(surface.triangles[i]);
+  }
   const std::vector<double> offsets = tracked_surface_offsets(mesh, surface);
-  const double largest = offsets.empty() ? 0.0 : *std::max_element(offsets.begin(), offsets.end());
-  return kOffsetMargin * largest + 1e-9 * derived.epsilon;
+  // How far from a left-out triangle an edge at the rim of its hole can be:
+  // the neighbours' tracked faces end on its edges, moved off them by no
+  // more than the largest offset.
+  const double hole_reach =
+      kOffsetMargin * (offsets.empty() ? 0.0 : *std::max_element(offsets.begin(), offsets.end())) +
+      1e-9 * derived.epsilon;
+  // The tracked surface must be open only at the holes, or regions would
+  // leak into each other (thingi10k/1514499 loses tracked faces somewhere
+  // with none left out: one region took in 282k tets whose own winding
+  // number said inside).
+  const bool closed_input = detail::is_cycle(weld_identical_vertices(surface)) &&
+                            detail::edges_near(tracked, open_edges, holes, hole_reach);
+  count(timer, "closed_input", closed_input ? 1 : 0);
+  if (closed_input) {
+    const std::vector<char> barrier = tets_near(mesh, holes);
+    count(timer, "barrier_tets", static_cast<std::size_t>(std::count(barrier.begin(), barrier.end(), 1)));
+    return classify_regions(mesh, WindingNumberTree(surface), rule, barrier);
+  }
+  std::size_t near_queries = 0;
+  TetClassification classes =
+      classify_tets_near_input(mesh, WindingNumberTree(tracked), surface, left_out, offsets, rule, &near_queries);
+  count(timer, "near_surface_queries", near_queries);
+  return classes;
 }
 
 // Faces flipped against their neighbours would make the winding number dip
@@ -254,50 +298,10 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
   {
     StageTimer timer(result.stats, "filter", logger);
     if (options.filter) {
-      // The winding number of the tracked surface as it is now (after
-      // rounding and improvement moved it within the envelope), not of the
-      // raw input: its jumps then lie exactly on tracked faces, so the kept
-      // tets end there. Filtering with the input kept big tets whose
-      // centroid fell between the two surfaces, and their far faces left
-      // the envelope.
-      const TriangleSoup tracked = detail::tracked_surface(mesh, {}, surface, detail::Multiplicity::as_chain);
-      const WindingRule rule = options.tetrahedralize.winding_rule;
-      // A closed tracked surface (as most inputs give) needs one query per
-      // region. So does a closed input whose tracked surface is not closed
-      // (triangles left out, or faces whose direction rounding blurred),
-      // asked of the input itself, with the tets around the left-out
-      // triangles deciding each for itself. An open input has a winding
-      // number that varies inside a region, so every tet is queried, most
-      // of them of the input triangles it embeds (winding_filter.h).
-      const std::vector<std::array<Index, 2>> open_edges = detail::unbalanced_edges(tracked);
-      const bool closed = open_edges.empty();
-      TriangleSoup holes;
-      holes.positions = surface.positions;
-      for (std::size_t i = 0; i < surface.triangles.size(); ++i) {
-        if (left_out[i] != 0) holes.triangles.push_back(surface.triangles[i]);
-      }
-      // The tracked surface must be open only at the holes, or regions
-      // would leak into each other (thingi10k/1514499 loses tracked faces
-      // somewhere with none left out: one region took in 282k tets whose
-      // own winding number said inside).
-      const bool closed_input = !closed && detail::is_cycle(weld_identical_vertices(surface)) &&
-                                detail::edges_near(tracked, open_edges, holes, hole_reach(mesh, surface, derived));
-      TetClassification classes;
-      if (closed) {
-        classes = classify_regions(mesh, WindingNumberTree(tracked), rule);
-      } else if (closed_input) {
-        const std::vector<char> barrier = tets_near(mesh, holes);
-        classes = classify_regions(mesh, WindingNumberTree(surface), rule, barrier);
-        count(timer, "barrier_tets", static_cast<std::size_t>(std::count(barrier.begin(), barrier.end(), 1)));
-      } else {
-        std::size_t near_queries = 0;
-        classes = classify_tets_near_input(mesh, WindingNumberTree(tracked), surface, left_out, rule, &near_queries);
-        count(timer, "near_surface_queries", near_queries);
-      }
+      const TetClassification classes =
+          classify_for_filter(mesh, surface, left_out, derived, options.tetrahedralize.winding_rule, timer);
       keep = classes.keep;
       count(timer, "kept_tets", classes.kept);
-      count(timer, "closed_surface", closed ? 1 : 0);
-      count(timer, "closed_input", closed_input ? 1 : 0);
     }
   }
   {

@@ -1,5 +1,7 @@
 #include <mr/tetmesh/winding_filter.h>
 
+#include "regions.h"
+
 #include <mr/core/errors.h>
 #include <mr/spatial/aabb_tree.h>
 
@@ -48,16 +50,6 @@ TetClassification classify_tets(const Mesh& mesh, const WindingNumberTree& tree,
   return result;
 }
 
-namespace {
-
-// Unit normal of triangle `id` (zero when it is degenerate).
-Vec3d unit_normal(const TriangleSoup& soup, std::uint32_t id) {
-  const Triangle& t = soup.triangles[id];
-  return (soup.positions[t[1]] - soup.positions[t[0]]).cross(soup.positions[t[2]] - soup.positions[t[0]]).normalized();
-}
-
-}  // namespace
-
 std::vector<double> tracked_surface_offsets(const Mesh& mesh, const TriangleSoup& input) {
   std::vector<double> offsets(input.triangles.size(), 0.0);
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
@@ -66,7 +58,7 @@ std::vector<double> tracked_surface_offsets(const Mesh& mesh, const TriangleSoup
       if (!mesh.is_surface_face(t, k)) continue;
       const auto corners = mesh.face_vertices(t, k);
       for (const std::uint32_t id : mesh.surface_ids(t, k)) {
-        const Vec3d normal = unit_normal(input, id);
+        const Vec3d normal = detail::input_normal(input, id);
         if (normal.squaredNorm() == 0.0) continue;  // a degenerate triangle adds nothing to the chain
         const Vec3d& origin = input.positions[input.triangles[id][0]];
         for (const Index v : corners) {
@@ -119,13 +111,14 @@ class OffsetGuard {
 
 TetClassification classify_tets_near_input(const Mesh& mesh, const WindingNumberTree& tracked,
                                            const TriangleSoup& input, std::span<const char> left_out,
-                                           WindingRule rule, std::size_t* near_queries) {
+                                           std::span<const double> offsets, WindingRule rule,
+                                           std::size_t* near_queries) {
   std::vector<Index> slots;
   slots.reserve(mesh.num_tets());
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
     if (mesh.tet_alive(t)) slots.push_back(t);
   }
-  const OffsetGuard guard(input, left_out, tracked_surface_offsets(mesh, input));
+  const OffsetGuard guard(input, left_out, offsets);
   std::vector<Vec3d> centroids(slots.size());
   std::vector<char> near(slots.size(), 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, slots.size(), 256),
@@ -155,6 +148,62 @@ TetClassification classify_tets_near_input(const Mesh& mesh, const WindingNumber
     result.winding[slots[i]] = w;
     if (is_inside(w, rule)) {
       result.keep[slots[i]] = 1;
+      ++result.kept;
+    }
+  }
+  return result;
+}
+
+std::vector<char> tets_near(const Mesh& mesh, const TriangleSoup& triangles) {
+  std::vector<char> near(mesh.tet_slots(), 0);
+  if (triangles.triangles.empty()) return near;
+  const spatial::AabbTree tree(triangles);
+  tbb::parallel_for(tbb::blocked_range<Index>(0, static_cast<Index>(mesh.tet_slots()), 256),
+                    [&](const tbb::blocked_range<Index>& range) {
+                      for (Index t = range.begin(); t != range.end(); ++t) {
+                        if (!mesh.tet_alive(t)) continue;
+                        const Vec3d centre = tet_centroid(mesh, t);
+                        double radius = 0.0;
+                        for (const Index v : mesh.tet(t)) {
+                          radius = std::max(radius, (mesh.position(v).approx - centre).norm());
+                        }
+                        // Doubled: the corners' doubles and the distance are rounded.
+                        near[t] = tree.any_within(centre, 2.0 * radius);
+                      }
+                    });
+  return near;
+}
+
+TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tree, WindingRule rule,
+                                   std::span<const char> barrier) {
+  const std::vector<std::int32_t> labels = detail::region_labels(mesh, barrier);
+  const std::int32_t regions = labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end());
+  std::vector<Index> largest(static_cast<std::size_t>(regions) + 1, kNoTet);
+  std::vector<double> largest_volume(largest.size(), -1.0);
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    const Tet& c = mesh.tet(t);
+    const Vec3d& a = mesh.position(c[0]).approx;
+    const double volume = (mesh.position(c[1]).approx - a)
+                              .cross(mesh.position(c[2]).approx - a)
+                              .dot(mesh.position(c[3]).approx - a);
+    if (volume > largest_volume[labels[t]]) {
+      largest_volume[labels[t]] = volume;
+      largest[labels[t]] = t;
+    }
+  }
+  std::vector<Vec3d> queries;
+  for (std::int32_t r = 1; r <= regions; ++r) queries.push_back(tet_centroid(mesh, largest[r]));
+  const std::vector<double> values = tree.evaluate(queries);
+  TetClassification result;
+  result.winding.assign(mesh.tet_slots(), 0.0);
+  result.keep.assign(mesh.tet_slots(), 0);
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    const double w = values[labels[t] - 1];
+    result.winding[t] = w;
+    if (is_inside(w, rule)) {
+      result.keep[t] = 1;
       ++result.kept;
     }
   }

@@ -39,11 +39,11 @@ TetClassification classify_tets(const Mesh& mesh, const WindingNumberTree& tree,
 std::vector<double> tracked_surface_offsets(const Mesh& mesh, const TriangleSoup& input);
 
 /// Classifies every live tet by the winding number of the tracked surface
-/// (whose tree is `tracked`) at its centroid, for when it is not a cycle (an open input, or triangles left out), asked
-/// of the input triangles it embeds (left_out[i] == 0) wherever the two
+/// (whose tree is `tracked`) at its centroid, for when it is not a cycle
+/// (an open input, or triangles left out), asked of the input triangles it embeds (left_out[i] == 0) wherever the two
 /// cannot differ much: the tracked chain is those triangles cut into faces,
 /// each moved off its triangle by at most that triangle's offset
-/// (tracked_surface_offsets), so at a centroid farther than kOffsetMargin
+/// (`offsets`, from tracked_surface_offsets), so at a centroid farther than kOffsetMargin
 /// times the offset from every triangle both numbers agree to a small
 /// fraction. The input has far fewer and better shaped triangles than the
 /// tracked surface of a fragmented mesh, whose long thin faces made each
@@ -52,14 +52,15 @@ std::vector<double> tracked_surface_offsets(const Mesh& mesh, const TriangleSoup
 inline constexpr double kOffsetMargin = 16.0;
 TetClassification classify_tets_near_input(const Mesh& mesh, const WindingNumberTree& tracked,
                                            const TriangleSoup& input, std::span<const char> left_out,
-                                           WindingRule rule, std::size_t* near_queries = nullptr);
+                                           std::span<const double> offsets, WindingRule rule,
+                                           std::size_t* near_queries = nullptr);
 /// Per tet slot, 1 for the live tets that may meet a triangle of
 /// `triangles` (their bounding sphere, doubled, reaches one).
 std::vector<char> tets_near(const Mesh& mesh, const TriangleSoup& triangles);
 
-/// The winding-number filter decided once per region (tets connected through faces
-/// that are not tracked surface; a tet with barrier[t] != 0 is a region of its own), at
-/// the centroid of its largest tet (ties: the smallest slot). Equal to
+/// The winding-number filter decided once per region (tets connected
+/// through faces that are not tracked surface; a tet with barrier[t] != 0
+/// is a region of its own), at the centroid of its largest tet (ties: the smallest slot). Equal to
 /// classify_tets when `tree` is built on a tracked surface that is a cycle,
 /// and far cheaper: most tets lie near the surface, where each query
 /// descends to the triangles. Also sound when `tree` is built on a closed
