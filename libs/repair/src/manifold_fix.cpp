@@ -35,7 +35,8 @@ std::vector<Index> defect_vertices(const BoundaryDefects& defects) {
 std::size_t split_round(TetMesh& mesh, const FaceNeighbours& neighbours, const std::vector<FaceRef>& boundary,
                         const BoundaryDefects& defects, double max_move) {
   const VertexStars stars(mesh.tets, mesh.positions.size());
-  const SplitContext context{mesh, neighbours, boundary, max_move};
+  const spatial::BoxGrid grid = grid_of_boundary(mesh, boundary, max_move);
+  const SplitContext context{mesh, neighbours, boundary, max_move, grid};
   std::size_t copies = 0;
   for (Index v : defect_vertices(defects)) copies += split_vertex(context, v, stars.of(v));
   return copies;

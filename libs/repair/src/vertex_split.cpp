@@ -81,7 +81,10 @@ bool new_faces_apart(const SplitContext& context, Index w, std::span<const Index
       around.push_back({f, {t, k}});
       for (Index v : f) reach.add(mesh.positions[v]);
     }
-  for (const FaceRef& other : context.boundary) {
+  std::vector<std::uint32_t> nearby;
+  context.boundary_grid.query(reach.lo, reach.hi, nearby);
+  for (std::uint32_t i : nearby) {
+    const FaceRef& other = context.boundary[i];
     const Triangle g = tet_face(mesh.tets[other.tet], other.face);
     const Box g_box = box_of(mesh.positions, g);
     if (!g_box.overlaps(reach)) continue;
@@ -123,6 +126,27 @@ bool move_into_class(const SplitContext& context, Index w, std::span<const Index
 }
 
 }  // namespace
+
+spatial::BoxGrid grid_of_boundary(const TetMesh& mesh, const std::vector<FaceRef>& boundary, double max_move) {
+  std::vector<Box> boxes;
+  boxes.reserve(boundary.size());
+  Box all;
+  double total_size = 0.0;
+  for (const FaceRef& f : boundary) {
+    Box box = box_of(mesh.positions, tet_face(mesh.tets[f.tet], f.face));
+    box.lo.array() -= max_move;
+    box.hi.array() += max_move;
+    all.add(box.lo);
+    all.add(box.hi);
+    total_size += (box.hi - box.lo).maxCoeff();
+    boxes.push_back(box);
+  }
+  if (boxes.empty()) return {};
+  const double cell = std::max(2.0 * total_size / double(boxes.size()), 1e-300);
+  spatial::BoxGrid grid(all.lo, cell);
+  for (std::size_t i = 0; i < boxes.size(); ++i) grid.insert(static_cast<std::uint32_t>(i), boxes[i].lo, boxes[i].hi);
+  return grid;
+}
 
 std::size_t split_vertex(const SplitContext& context, Index v, std::span<const Index> star) {
   const std::vector<std::vector<Index>> classes = face_connected_classes(context.neighbours, star);

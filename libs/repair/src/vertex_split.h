@@ -5,6 +5,8 @@
 
 #include "tet_set.h"
 
+#include <mr/spatial/box_grid.h>
+
 namespace mr::repair::detail {
 
 struct SplitContext {
@@ -12,7 +14,13 @@ struct SplitContext {
   const FaceNeighbours& neighbours;    ///< of mesh.tets
   const std::vector<FaceRef>& boundary;  ///< boundary_faces(neighbours, ...)
   double max_move = 0.0;
+  /// Indices into `boundary`, each face's box grown by max_move: the box
+  /// still covers the face after the moves of one round.
+  const spatial::BoxGrid& boundary_grid;
 };
+
+/// The grid SplitContext::boundary_grid asks for.
+spatial::BoxGrid grid_of_boundary(const TetMesh& mesh, const std::vector<FaceRef>& boundary, double max_move);
 
 /// Gives every class of `star` (the tets around v) but the largest its own
 /// copy of v, moved into the interior of that class's largest tet. A class

@@ -19,6 +19,7 @@ MeshState::MeshState(const TriangleSoup& input, const TriangleSoup& welded,
   build_boundary_envelope();
   build_grid();
   build_quadrics();
+  carried_by_.resize(mesh_.n_faces());
 }
 
 // The halfedge mesh of the faces OpenMesh can hold; the others are kept aside.
@@ -155,7 +156,7 @@ void MeshState::build_grid() {
   const double diagonal = (hi - lo).norm();
   const double mean_length = mesh_.n_edges() ? total_length / double(mesh_.n_edges()) : diagonal;
   const double cell = std::max({2.0 * mean_length, diagonal / 2000.0, 1e-300});
-  grid_ = FaceGrid(lo - Vec3d::Constant(cell), cell);
+  grid_ = spatial::BoxGrid(lo - Vec3d::Constant(cell), cell);
   for (auto f : mesh_.faces()) insert_into_grid(f);
   for (std::size_t k = 0; k < kept_aside_.size(); ++k) {
     const Corners& c = kept_aside_[k];
@@ -226,14 +227,27 @@ void MeshState::collapse(TriMesh::HalfedgeHandle h) {
     grid_.erase(static_cast<std::uint32_t>(f.idx()));
   }
   quadrics_[v1.idx()] += quadrics_[v0.idx()];
+  std::vector<TriMesh::FaceHandle> fan;
+  for (auto f : mesh_.vf_range(v0)) fan.push_back(f);
+  std::vector<std::uint32_t> moving = take_carried_points(fan);
+  moving.push_back(static_cast<std::uint32_t>(carried_positions_.size()));
+  carried_positions_.push_back(point(v0));
   mesh_.collapse(h);
-  for (auto f : mesh_.vf_range(v1)) insert_into_grid(f);
+  fan.clear();
+  for (auto f : mesh_.vf_range(v1)) {
+    insert_into_grid(f);
+    fan.push_back(f);
+  }
+  carry_by_nearest(moving, fan);
 }
 
 void MeshState::flip(TriMesh::EdgeHandle e) {
+  const std::vector<TriMesh::FaceHandle> pair{mesh_.face_handle(mesh_.halfedge_handle(e, 0)),
+                                              mesh_.face_handle(mesh_.halfedge_handle(e, 1))};
+  const std::vector<std::uint32_t> moving = take_carried_points(pair);
   mesh_.flip(e);
-  insert_into_grid(mesh_.face_handle(mesh_.halfedge_handle(e, 0)));
-  insert_into_grid(mesh_.face_handle(mesh_.halfedge_handle(e, 1)));
+  for (auto f : pair) insert_into_grid(f);
+  carry_by_nearest(moving, pair);
 }
 
 TriangleSoup MeshState::to_output() const {

@@ -2,10 +2,11 @@
 // The working state of one simplification: the halfedge mesh of the manifold
 // part (copies of one triangle merged into one face that remembers them), which vertices must not move, the envelopes of the original input and
 // of its boundary curve, a grid of current faces (for the exact
-// self-intersection test) and per-vertex quadrics (for the collapse cost).
+// self-intersection test), per-vertex quadrics (for the collapse cost) and
+// the vertices removed so far, each carried by the face nearest to it.
 // Checks are const and may run on many threads at once; operations are not.
 
-#include "face_grid.h"
+#include <mr/spatial/box_grid.h>
 
 #include <mr/core/openmesh_convert.h>
 #include <mr/envelope/envelope.h>
@@ -60,6 +61,9 @@ class MeshState {
   bool flip_keeps_faces_apart(TriMesh::EdgeHandle e) const;
   void flip(TriMesh::EdgeHandle e);
 
+  /// Vertices removed by collapses, each still within epsilon of the surface.
+  std::size_t carried_points() const { return carried_positions_.size(); }
+
   /// The manifold part followed by the kept-aside faces, unreferenced vertices dropped.
   TriangleSoup to_output() const;
 
@@ -97,6 +101,18 @@ class MeshState {
   bool boundary_curve_kept(TriMesh::HalfedgeHandle h) const;
   bool shapes_acceptable(const std::vector<NewFace>& faces) const;
   bool inside_envelope(const std::vector<NewFace>& faces) const;
+
+  // Carried points: the envelope bounds only the distance from the output to
+  // the input, so on its own it lets a part thinner than epsilon shrink away
+  // one collapse at a time. Every removed vertex is carried by a current face
+  // within epsilon of it, and an operation passes only if the points carried
+  // by the faces it rewrites stay within epsilon of the faces it leaves.
+  // (carried_points.cpp)
+  std::vector<Vec3d> points_carried_by(const std::vector<TriMesh::FaceHandle>& faces) const;
+  bool collapse_keeps_carried_points(TriMesh::HalfedgeHandle h, const std::vector<NewFace>& faces) const;
+  bool flip_keeps_carried_points(TriMesh::EdgeHandle e, const std::vector<NewFace>& faces) const;
+  std::vector<std::uint32_t> take_carried_points(const std::vector<TriMesh::FaceHandle>& faces);
+  void carry_by_nearest(const std::vector<std::uint32_t>& points, const std::vector<TriMesh::FaceHandle>& faces);
   /// replaced(face index) tells faces the operation removes or rewrites;
   /// old_faces are their corners.
   template <class Replaced>
@@ -113,8 +129,10 @@ class MeshState {
   std::unique_ptr<envelope::Envelope> envelope_;
   std::unique_ptr<envelope::Envelope> fine_envelope_;  // stage 2: asked only where envelope_ refuses
   std::unique_ptr<envelope::Envelope> boundary_envelope_;  // null when the input has no boundary
-  FaceGrid grid_;
+  spatial::BoxGrid grid_;
   std::vector<Quadric> quadrics_;
+  std::vector<Vec3d> carried_positions_;                 // removed vertices
+  std::vector<std::vector<std::uint32_t>> carried_by_;   // per mesh face: indices into carried_positions_
   std::size_t live_faces_ = 0;
 };
 

@@ -183,7 +183,10 @@ bool MeshState::collapse_passes_local_checks(TriMesh::HalfedgeHandle h) const {
   if (!boundary_curve_kept(h)) return false;
   const std::vector<NewFace> faces = faces_after_collapse(h);
   if (!shapes_acceptable(faces)) return false;
-  return collapse_stays_in_plane(h, faces) || inside_envelope(faces);
+  // In the plane, the new fan tiles the old fan's polygon: no point moves
+  // away from the surface.
+  if (collapse_stays_in_plane(h, faces)) return true;
+  return inside_envelope(faces) && collapse_keeps_carried_points(h, faces);
 }
 
 // The collapse replaces the fan of v0 by a fan of v1 over the same polygon:
@@ -297,7 +300,7 @@ bool MeshState::flip_improves_locally(TriMesh::EdgeHandle e) const {
   // and both pairs tile it.
   const std::vector<Corners> old_faces{corners(mesh_.face_handle(h0)), corners(mesh_.opposite_face_handle(h0))};
   if (new_faces_within_old(old_faces, {after[0].corners, after[1].corners})) return true;
-  return inside_envelope({after[0], after[1]});
+  return inside_envelope({after[0], after[1]}) && flip_keeps_carried_points(e, after);
 }
 
 bool MeshState::flip_keeps_faces_apart(TriMesh::EdgeHandle e) const {

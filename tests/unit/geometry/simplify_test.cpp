@@ -238,6 +238,22 @@ TEST_CASE("a sphere is reduced substantially within its distance bound", "[simpl
   CHECK(report.volume > 0.95 * mr::test::enclosed_volume(input));
 }
 
+// A disc far thinner than epsilon: every collapse towards its middle keeps
+// the faces inside the envelope, so only the removed vertices that the faces
+// carry keep its rim from shrinking in.
+TEST_CASE("a part thinner than epsilon does not erode", "[simplify]") {
+  TriangleSoup input = icosphere(4);
+  for (Vec3d& p : input.positions) p.z() *= 1e-4;
+  const auto result = simplify_in_envelope(input, {});
+  INFO("faces after: " << result.faces_after);
+  CHECK(result.faces_after < input.triangles.size() / 4);
+  CHECK(mr::check::one_sided_distance(result.soup, input).max <= result.epsilon);
+  CHECK(mr::check::one_sided_distance(input, result.soup).max <= result.epsilon);
+  const auto [lo, hi] = bbox(result.soup);
+  CHECK(hi.x() - lo.x() >= 2.0 - 2.0 * result.epsilon);
+  CHECK(hi.y() - lo.y() >= 2.0 - 2.0 * result.epsilon);
+}
+
 TEST_CASE("simplification stops at the target face count", "[simplify]") {
   SimplifyOptions options;
   options.target_faces = 5000;

@@ -4,8 +4,9 @@
 // edge collapses ordered by a quadric-plus-length cost, then angle-improving
 // edge flips. Every accepted operation keeps each changed triangle inside the
 // envelope of the ORIGINAL input, turns no face normal by more than a bound,
-// keeps the mesh a valid halfedge mesh (link condition) and creates no new
-// self-intersection (exact test). Non-manifold parts are kept aside untouched;
+// keeps the mesh a valid halfedge mesh (link condition), keeps every vertex
+// it removed within epsilon of the faces that are left (so parts thinner than
+// epsilon do not erode) and creates no new self-intersection (exact test). Non-manifold parts are kept aside untouched;
 // copies of one triangle (double-sided faces) are simplified as one face and
 // written out as often, in the same orientations, as the input had them.
 

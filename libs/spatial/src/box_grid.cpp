@@ -1,18 +1,18 @@
-#include "face_grid.h"
+#include <mr/spatial/box_grid.h>
 
 #include <algorithm>
 #include <cmath>
 
-namespace mr::simplify {
+namespace mr::spatial {
 namespace {
 
 constexpr std::int64_t kCellRange = std::int64_t(1) << 21;
 
 }  // namespace
 
-FaceGrid::FaceGrid(const Vec3d& origin, double cell_size) : origin_(origin), cell_size_(cell_size) {}
+BoxGrid::BoxGrid(const Vec3d& origin, double cell_size) : origin_(origin), cell_size_(cell_size) {}
 
-std::array<std::int64_t, 3> FaceGrid::cell_of(const Vec3d& p) const {
+std::array<std::int64_t, 3> BoxGrid::cell_of(const Vec3d& p) const {
   std::array<std::int64_t, 3> c{};
   for (int k = 0; k < 3; ++k) {
     const double x = std::floor((p[k] - origin_[k]) / cell_size_);
@@ -21,7 +21,7 @@ std::array<std::int64_t, 3> FaceGrid::cell_of(const Vec3d& p) const {
   return c;
 }
 
-std::uint64_t FaceGrid::key(std::int64_t x, std::int64_t y, std::int64_t z) {
+std::uint64_t BoxGrid::key(std::int64_t x, std::int64_t y, std::int64_t z) {
   return (std::uint64_t(x) << 42) | (std::uint64_t(y) << 21) | std::uint64_t(z);
 }
 
@@ -31,19 +31,19 @@ std::int64_t entries_of(std::int64_t cells, std::int64_t max_cells) { return cel
 
 }  // namespace
 
-std::int64_t FaceGrid::cells_spanned(const Vec3d& lo, const Vec3d& hi) const {
+std::int64_t BoxGrid::cells_spanned(const Vec3d& lo, const Vec3d& hi) const {
   const auto a = cell_of(lo);
   const auto b = cell_of(hi);
   return (b[0] - a[0] + 1) * (b[1] - a[1] + 1) * (b[2] - a[2] + 1);
 }
 
-void FaceGrid::erase(std::uint32_t face) {
+void BoxGrid::erase(std::uint32_t face) {
   if (face >= boxes_.size()) return;
   live_entries_ -= entries_of(boxes_[face].cells, kMaxCellsPerFace);
   boxes_[face].cells = 0;
 }
 
-void FaceGrid::insert(std::uint32_t face, const Vec3d& lo, const Vec3d& hi) {
+void BoxGrid::insert(std::uint32_t face, const Vec3d& lo, const Vec3d& hi) {
   if (face >= boxes_.size()) boxes_.resize(std::size_t(face) + 1);
   Box& box = boxes_[face];
   const std::int64_t cells = cells_spanned(lo, hi);
@@ -55,7 +55,7 @@ void FaceGrid::insert(std::uint32_t face, const Vec3d& lo, const Vec3d& hi) {
   if (entries_ > 2 * live_entries_ + 4096) rebuild();
 }
 
-void FaceGrid::add_entries(std::uint32_t face, const Box& box) {
+void BoxGrid::add_entries(std::uint32_t face, const Box& box) {
   if (box.cells > kMaxCellsPerFace) {
     if (face >= in_oversize_.size()) in_oversize_.resize(face + 1, 0);
     if (!in_oversize_[face]) oversize_.push_back(face);
@@ -70,7 +70,7 @@ void FaceGrid::add_entries(std::uint32_t face, const Box& box) {
   entries_ += box.cells;
 }
 
-void FaceGrid::rebuild() {
+void BoxGrid::rebuild() {
   double extent = 0.0;
   std::size_t live = 0;
   for (const Box& box : boxes_) {
@@ -93,7 +93,7 @@ void FaceGrid::rebuild() {
   }
 }
 
-bool FaceGrid::overlaps(std::uint32_t face, const Vec3d& lo, const Vec3d& hi) const {
+bool BoxGrid::overlaps(std::uint32_t face, const Vec3d& lo, const Vec3d& hi) const {
   const Box& box = boxes_[face];
   if (box.cells == 0) return false;  // erased
   for (int k = 0; k < 3; ++k) {
@@ -106,7 +106,7 @@ bool FaceGrid::overlaps(std::uint32_t face, const Vec3d& lo, const Vec3d& hi) co
 // and the query box cover (faces spanning several cells are otherwise listed
 // once per cell, and sorting the repeats away took most of the query time).
 // Oversized faces come from their own list.
-void FaceGrid::append_overlapping(const std::vector<std::uint32_t>& faces, const std::array<std::int64_t, 3>& cell,
+void BoxGrid::append_overlapping(const std::vector<std::uint32_t>& faces, const std::array<std::int64_t, 3>& cell,
                                   const std::array<std::int64_t, 3>& query_first, const Vec3d& lo,
                                   const Vec3d& hi, std::vector<std::uint32_t>& out) const {
   for (const std::uint32_t face : faces) {
@@ -119,7 +119,7 @@ void FaceGrid::append_overlapping(const std::vector<std::uint32_t>& faces, const
 }
 
 // For query boxes larger than the occupied part of the grid.
-void FaceGrid::collect_from_all_cells(const std::array<std::int64_t, 3>& a,
+void BoxGrid::collect_from_all_cells(const std::array<std::int64_t, 3>& a,
                                       const std::array<std::int64_t, 3>& b, const Vec3d& lo, const Vec3d& hi,
                                       std::vector<std::uint32_t>& out) const {
   const std::uint64_t mask = kCellRange - 1;
@@ -135,7 +135,7 @@ void FaceGrid::collect_from_all_cells(const std::array<std::int64_t, 3>& a,
 // Entries are filtered by the face's current box before sorting: stale
 // entries and faces whose box misses the query's never reach the sort (on
 // thingi10k/88566 meshrepair's clean-up went from 419 s to 92 s).
-void FaceGrid::query(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const {
+void BoxGrid::query(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const {
   out.clear();
   for (const std::uint32_t face : oversize_) {
     if (overlaps(face, lo, hi)) out.push_back(face);
@@ -157,4 +157,4 @@ void FaceGrid::query(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
-}  // namespace mr::simplify
+}  // namespace mr::spatial

@@ -1,11 +1,12 @@
 #pragma once
-// A uniform hash grid of face bounding boxes: a changed face is inserted
+// A uniform hash grid of boxes keyed by a dense id (faces of a changing
+// mesh, in the simplification and the repair): a changed box is inserted
 // again and its old entries stay behind until they outnumber the current
 // ones, when the grid is rebuilt from the current boxes (on a 516k-face scan
 // the stale entries made queries sort long lists most of the time). Queries
-// return a superset of the faces whose current box overlaps the query box, as
-// long as every face was (re)inserted with its current box; callers test the
-// candidates against current geometry and skip deleted faces.
+// return a superset of the ids whose current box overlaps the query box, as
+// long as every id was (re)inserted with its current box; callers test the
+// candidates against current geometry and skip erased ids.
 
 #include <mr/core/types.h>
 
@@ -14,17 +15,17 @@
 #include <unordered_map>
 #include <vector>
 
-namespace mr::simplify {
+namespace mr::spatial {
 
-class FaceGrid {
+class BoxGrid {
  public:
-  FaceGrid() = default;
-  FaceGrid(const Vec3d& origin, double cell_size);
+  BoxGrid() = default;
+  BoxGrid(const Vec3d& origin, double cell_size);
 
-  void insert(std::uint32_t face, const Vec3d& lo, const Vec3d& hi);
-  /// Forgets a deleted face (its entries go stale).
-  void erase(std::uint32_t face);
-  /// The faces whose current box overlaps [lo, hi] (closed), sorted, without repeats.
+  void insert(std::uint32_t id, const Vec3d& lo, const Vec3d& hi);
+  /// Forgets an id (its entries go stale).
+  void erase(std::uint32_t id);
+  /// The ids whose current box overlaps [lo, hi] (closed), sorted, without repeats.
   void query(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const;
 
  private:
@@ -58,4 +59,4 @@ class FaceGrid {
   std::int64_t live_entries_ = 0; ///< of the current boxes
 };
 
-}  // namespace mr::simplify
+}  // namespace mr::spatial
