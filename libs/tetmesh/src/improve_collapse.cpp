@@ -188,7 +188,11 @@ bool try_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal) {
   const double old_max = max_energy_of(mesh, star_u);
   const double new_max = max_energy(mesh, new_tets);
   if (goal == CollapseGoal::quality && new_max > std::max(old_max, ws.stop_energy)) return false;
-  if (!std::isfinite(new_max)) return false;
+  // Rounding only needs the exact test below: a new tet flat on the doubles
+  // of its rational corners (a knot of cut points) becomes positive or is
+  // checked again when they are rounded. Requiring finite energy here
+  // refused nearly every collapse that would free a knot.
+  if (goal == CollapseGoal::quality && !std::isfinite(new_max)) return false;
 
   const std::vector<Index> star_v = ws.star(v);
   const Link lu = vertex_link(mesh, star_u, u);

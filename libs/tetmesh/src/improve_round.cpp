@@ -25,12 +25,14 @@ bool try_round_in_place(Workspace& ws, Index v) {
 
 namespace {
 
-// Neighbours of v with double coordinates, nearest first (ties by index).
-std::vector<Index> double_neighbours(const Mesh& mesh, Index v, std::span<const Index> star) {
+// Neighbours of v, nearest first (ties by index); only those with double
+// coordinates when `doubles_only`.
+std::vector<Index> neighbours_by_distance(const Mesh& mesh, Index v, std::span<const Index> star,
+                                          bool doubles_only) {
   std::vector<std::pair<double, Index>> found;
   for (const Index t : star) {
     for (const Index w : mesh.tet(t)) {
-      if (w == v || mesh.position(w).is_exact()) continue;
+      if (w == v || (doubles_only && mesh.position(w).is_exact())) continue;
       found.emplace_back((mesh.position(w).approx - mesh.position(v).approx).squaredNorm(), w);
     }
   }
@@ -51,11 +53,29 @@ bool round_one(Workspace& ws, Index v, RoundingStats& stats) {
     ++stats.moved;
     return true;
   }
-  for (const Index w : double_neighbours(ws.mesh, v, star)) {
+  for (const Index w : neighbours_by_distance(ws.mesh, v, star, true)) {
     if (try_collapse(ws, v, w, CollapseGoal::rounding)) {
       ++stats.collapsed;
       return true;
     }
+  }
+  return false;
+}
+
+// When v itself cannot move, its nearest neighbours are collapsed onto it,
+// one at a time: each collapse takes away the faces of v's star that the
+// rounded v would cross (a knot of cut points closer than a rounding step,
+// or a sliver whose far face passes within one). Tried only on vertices the
+// other moves left.
+bool round_by_clearing_neighbours(Workspace& ws, Index v, RoundingStats& stats) {
+  constexpr int kMaxCleared = 8;
+  int cleared = 0;
+  for (const Index w : neighbours_by_distance(ws.mesh, v, ws.star(v), false)) {
+    if (cleared == kMaxCleared) break;
+    if (!try_collapse(ws, w, v, CollapseGoal::rounding)) continue;
+    ++cleared;
+    ++stats.collapsed;
+    if (round_one(ws, v, stats)) return true;
   }
   return false;
 }
@@ -97,7 +117,9 @@ RoundingStats round_vertices(Mesh& mesh, const SurfaceBounds& bounds, const Logg
     for (const Index v : rational) {
       if (!mesh.vertex_alive(v) || !mesh.position(v).is_exact()) continue;
       if (round > 0) smooth_neighbours(ws, v);
-      if (!round_one(ws, v, stats)) left.push_back(v);
+      if (round_one(ws, v, stats)) continue;
+      if (round > 0 && round_by_clearing_neighbours(ws, v, stats)) continue;
+      left.push_back(v);
     }
     rational = std::move(left);
   }

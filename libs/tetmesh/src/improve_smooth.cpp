@@ -71,6 +71,9 @@ struct Freedom {
   bool tangent = false;                                  ///< stay in the plane of `normal`
   Vec3d normal = Vec3d::Zero();
   std::vector<FaceCorners> tracked;  ///< its tracked faces, checked against the envelope
+  /// Fixed only by its tracked faces (a crease, an intersection curve, a
+  /// non-disk neighbourhood); `tracked` then holds them all.
+  bool creased = false;
 };
 
 Vec3d unit_normal(const Mesh& mesh, const FaceKey& f) {
@@ -138,7 +141,13 @@ Freedom freedom_of(const Mesh& mesh, Index v, std::span<const Index> star) {
   }
   if (mesh.has_flag(v, kOnBox) && !on_hull) out.fixed = true;
   const std::vector<TrackedFace> faces = tracked_faces_at(mesh, star, v);
-  if (!faces.empty() && (on_hull || !surface_freedom(mesh, faces, v, out))) out.fixed = true;
+  if (!faces.empty() && (on_hull || !surface_freedom(mesh, faces, v, out))) {
+    out.creased = !out.fixed && !on_hull;
+    out.fixed = true;
+    out.tangent = false;
+    out.tracked.clear();
+    for (const TrackedFace& f : faces) out.tracked.push_back(f.key);
+  }
   return out;
 }
 
@@ -224,7 +233,11 @@ bool try_smooth(const Workspace& ws, Index v, std::span<const Index> star) {
 
 bool try_relocate(const Workspace& ws, Index v, std::span<const Index> star) {
   const Freedom freedom = freedom_of(ws.mesh, v, star);
-  if (freedom.fixed) return false;
+  // A creased vertex (on a feature or on the crossing of two input
+  // surfaces) may leave its crease by a rounding error's worth, no more:
+  // its tracked faces stay in the envelope, and the feature stays sharp.
+  if (freedom.fixed && !freedom.creased) return false;
+  const double largest_step = freedom.creased ? 0x1p-24 : 0.5;
   const Vec3d p0 = ws.mesh.position(v).approx;
   Vec3d centre = Vec3d::Zero();
   const std::vector<Opposite> tets = opposites(ws.mesh, v, star);
@@ -233,7 +246,7 @@ bool try_relocate(const Workspace& ws, Index v, std::span<const Index> star) {
   const Vec3d d = restrict_step(centre - p0, freedom);
   // Tiny moves first: the rational point is usually a rounding error away
   // from a position that works.
-  for (double s = 0x1p-40; s <= 0.5; s *= 16) {
+  for (double s = 0x1p-40; s <= largest_step; s *= 16) {
     Vec3d p = p0 + s * d;
     for (int axis = 0; axis < 3; ++axis) {
       if (freedom.frozen_axis[axis]) p[axis] = p0[axis];
