@@ -1,4 +1,4 @@
-// simplify_bench MODEL|gen-torus:FACES [epsilon_rel]: simplify-in-envelope on
+// simplify_bench MODEL|gen-torus:FACES [epsilon_rel] [--write-input FILE]: simplify-in-envelope on
 // one model, then OpenMesh's plain quadric decimation (Decimater + ModQuadric)
 // to the same face count; prints one JSON line with faces, seconds, peak
 // memory and the sampled distances output -> input and input -> output (their
@@ -18,11 +18,13 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
 #include <numbers>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -65,16 +67,23 @@ mr::TriangleSoup openmesh_quadric(const mr::TriangleSoup& input, std::size_t tar
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::cerr << "usage: simplify_bench MODEL|gen-torus:FACES [epsilon_rel]\n";
+  std::vector<std::string> args(argv + 1, argv + argc);
+  std::string input_copy;  // --write-input FILE: the input as read or generated, for other tools
+  if (const auto it = std::find(args.begin(), args.end(), "--write-input"); it != args.end() && it + 1 != args.end()) {
+    input_copy = *(it + 1);
+    args.erase(it, it + 2);
+  }
+  if (args.empty()) {
+    std::cerr << "usage: simplify_bench MODEL|gen-torus:FACES [epsilon_rel] [--write-input FILE]\n";
     return 2;
   }
-  const std::string model = argv[1];
+  const std::string model = args[0];
   mr::simplify::SimplifyOptions options;
-  if (argc > 2) options.epsilon_rel = std::stod(argv[2]);
-  const mr::TriangleSoup input = model.rfind("gen-torus:", 0) == 0
-                                     ? torus(std::stoul(model.substr(10)))
-                                     : mr::io::read_surface(mr::io::make_default_registry(), model);
+  if (args.size() > 1) options.epsilon_rel = std::stod(args[1]);
+  const auto registry = mr::io::make_default_registry();
+  const mr::TriangleSoup input = model.rfind("gen-torus:", 0) == 0 ? torus(std::stoul(model.substr(10)))
+                                                                   : mr::io::read_surface(registry, model);
+  if (!input_copy.empty()) mr::io::write_surface(registry, input, input_copy);
   const double rss_input = peak_rss_mb();
   auto start = std::chrono::steady_clock::now();
   const auto ours = mr::simplify::simplify_in_envelope(input, options);

@@ -102,7 +102,10 @@ def _admesh(tool, inp, workdir, eps):
 
 def _meshlab(tool, inp, workdir, eps):
     script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "meshlab_repair.mlx")
-    return [tool.executable, "-i", inp, "-o", os.path.join(workdir, "out.ply"), "-s", script]
+    command = [tool.executable, "-i", inp, "-o", os.path.join(workdir, "out.ply"), "-s", script]
+    # meshlabserver needs an OpenGL context even for filters: give it a virtual display.
+    xvfb = shutil.which("xvfb-run")
+    return ([xvfb, "-a"] + command) if xvfb else command
 
 
 def _ours(name, output_kind, builder, output, config):
@@ -132,7 +135,7 @@ def all_tools():
              "nearby merge, remove unconnected facets, fill holes, fix normals; input converted to STL)", ".stl",
              build_command=_admesh, find_output=_fixed_output("out.stl")),
         Tool("meshlab", "meshrepair", False, SURFACE,
-             "`meshlabserver -i in.ply -o out.ply -s meshlab_repair.mlx` (headless MeshLab)", ".ply",
+             "`xvfb-run -a meshlabserver -i in.ply -o out.ply -s meshlab_repair.mlx` (MeshLab 2020.09, Debian)", ".ply",
              build_command=_meshlab, find_output=_fixed_output("out.ply")),
     ]
     return {t.name: t for t in tools}
