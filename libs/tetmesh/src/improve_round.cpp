@@ -72,10 +72,19 @@ bool round_by_clearing_neighbours(Workspace& ws, Index v, RoundingStats& stats) 
   int cleared = 0;
   for (const Index w : neighbours_by_distance(ws.mesh, v, ws.star(v), false)) {
     if (cleared == kMaxCleared) break;
-    if (!try_collapse(ws, w, v, CollapseGoal::rounding)) continue;
-    ++cleared;
-    ++stats.collapsed;
-    if (round_one(ws, v, stats)) return true;
+    if (!ws.mesh.vertex_alive(w)) continue;
+    if (try_collapse(ws, w, v, CollapseGoal::rounding)) {
+      ++cleared;
+      ++stats.collapsed;
+      if (round_one(ws, v, stats)) return true;
+      continue;
+    }
+    // Two rational points of one knot: w may absorb v instead, and is
+    // rounded in its own turn.
+    if (ws.mesh.position(w).is_exact() && try_collapse(ws, v, w, CollapseGoal::rounding)) {
+      ++stats.collapsed;
+      return true;
+    }
   }
   return false;
 }
