@@ -4,6 +4,7 @@
 
 #include "test_support.h"
 
+#include <mr/core/double_sided.h>
 #include <mr/core/orientation.h>
 
 #include <catch2/catch.hpp>
@@ -112,4 +113,48 @@ TEST_CASE("orientation: a Moebius strip reports its conflict", "[orientation]") 
   const OrientationStats stats = orient_coherently(soup);
   CHECK(stats.patches == 1);
   CHECK(stats.conflicts >= 1);
+}
+
+// Every face of a cube twice, in both orientations, the copy first on half
+// of them (as double-sided exports write them): its winding number is 0
+// everywhere until one copy of each face is dropped and the cube is turned
+// outward.
+TEST_CASE("double-sided: a cube written double-sided becomes one outward cube", "[orientation]") {
+  const TriangleSoup cube = test::cube_soup();
+  TriangleSoup soup;
+  soup.positions = cube.positions;
+  for (std::size_t f = 0; f < cube.triangles.size(); ++f) {
+    Triangle t = cube.triangles[f];
+    Triangle r{t[0], t[2], t[1]};
+    if (f % 2 == 0) std::swap(t, r);
+    soup.triangles.push_back(t);
+    soup.triangles.push_back(r);
+  }
+  CHECK(test::enclosed_volume(soup) == Approx(0.0).margin(1e-12));
+  CHECK(make_double_sided_components_one_sided(soup) == 12);
+  REQUIRE(soup.triangles.size() == 12);
+  CHECK(test::enclosed_volume(soup) == Approx(1.0));
+}
+
+// Two tets glued along a face written once each way: that face is a wall
+// between parts and must still cancel.
+TEST_CASE("double-sided: a shared wall between two parts is left alone", "[orientation]") {
+  TriangleSoup soup;
+  soup.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, -1}};
+  soup.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2},   // upper tet, the wall {0, 2, 1} facing down
+                    {0, 1, 2}, {0, 4, 1}, {1, 4, 2}, {0, 2, 4}};  // lower tet, the wall facing up
+  const TriangleSoup before = soup;
+  CHECK(make_double_sided_components_one_sided(soup) == 0);
+  CHECK(soup.triangles == before.triangles);
+}
+
+// An open sheet written double-sided is a wall of no thickness: it stays
+// as it is (the pipeline thickens it).
+TEST_CASE("double-sided: an open double-sided sheet is left alone", "[orientation]") {
+  TriangleSoup soup;
+  soup.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  soup.triangles = {{0, 1, 2}, {0, 2, 1}, {0, 2, 3}, {0, 3, 2}};
+  const TriangleSoup before = soup;
+  CHECK(make_double_sided_components_one_sided(soup) == 0);
+  CHECK(soup.triangles == before.triangles);
 }

@@ -3,6 +3,7 @@
 #include "regions.h"
 #include "rounding_stage.h"
 
+#include <mr/core/double_sided.h>
 #include <mr/core/errors.h>
 #include <mr/core/orientation.h>
 #include <mr/core/thicken.h>
@@ -268,9 +269,12 @@ TetClassification classify_for_filter(const Mesh& mesh, const TriangleSoup& surf
 
 // Faces flipped against their neighbours would make the winding number dip
 // inside the solid; orienting patches coherently first keeps the filter sound.
+// A surface written double-sided (each face in both orientations) has
+// winding number 0 everywhere: it is made one-sided and outward first.
 TriangleSoup oriented_input(const TriangleSoup& input, PipelineStats& stats, const Logger& logger) {
   StageTimer timer(stats, "orient", logger);
   TriangleSoup oriented = input;
+  count(timer, "double_sided_copies_dropped", make_double_sided_components_one_sided(oriented));
   const OrientationStats orientation = orient_coherently(oriented);
   count(timer, "patches", orientation.patches);
   count(timer, "flipped", orientation.flipped);
