@@ -3,6 +3,7 @@
 
 #include <mr/check/self_intersections.h>
 #include <mr/check/surface_check.h>
+#include <mr/core/union_find.h>
 
 #include <algorithm>
 #include <numeric>
@@ -10,22 +11,6 @@
 
 namespace mr::check {
 namespace {
-
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) {
-    parent_.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) parent_.push_back(i);
-  }
-  std::size_t find(std::size_t x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) { parent_[find(a)] = find(b); }
-
- private:
-  std::vector<std::size_t> parent_;
-};
 
 bool repeats_index(const Triangle& t) { return t[0] == t[1] || t[1] == t[2] || t[0] == t[2]; }
 

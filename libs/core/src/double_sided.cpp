@@ -1,16 +1,17 @@
 #include <mr/core/double_sided.h>
 #include <mr/core/orientation.h>
+#include <mr/core/union_find.h>
 #include <mr/core/weld.h>
 
 #include <algorithm>
 #include <map>
-#include <numeric>
 #include <utility>
 
 namespace mr {
 namespace {
 
 using Key = std::array<Index, 3>;
+using Edge = std::pair<Index, Index>;
 
 Key sorted(const Triangle& t) {
   Key k{t[0], t[1], t[2]};
@@ -26,46 +27,80 @@ bool along_sorted(const Triangle& t) {
   return true;
 }
 
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
+Edge edge(const Triangle& t, int i) { return std::minmax(t[i], t[(i + 1) % 3]); }
 
-// Per face, the smallest face index of its edge-connected component.
-std::vector<std::uint32_t> components(const std::vector<Triangle>& faces) {
+// Per face, a representative face of its edge-connected component.
+std::vector<std::size_t> components(const std::vector<Triangle>& faces) {
   UnionFind sets(faces.size());
-  std::map<std::pair<Index, Index>, std::uint32_t> first_on_edge;
-  for (std::uint32_t f = 0; f < faces.size(); ++f)
+  std::map<Edge, std::size_t> first_on_edge;
+  for (std::size_t f = 0; f < faces.size(); ++f)
     for (int i = 0; i < 3; ++i) {
-      const auto edge = std::minmax(faces[f][i], faces[f][(i + 1) % 3]);
-      const auto [it, inserted] = first_on_edge.try_emplace(edge, f);
+      const auto [it, inserted] = first_on_edge.try_emplace(edge(faces[f], i), f);
       if (!inserted) sets.unite(it->second, f);
     }
-  std::vector<std::uint32_t> out(faces.size());
-  for (std::uint32_t f = 0; f < faces.size(); ++f) out[f] = sets.find(f);
+  std::vector<std::size_t> out(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) out[f] = sets.find(f);
   return out;
 }
 
-double signed_volume(const TriangleSoup& soup, const std::vector<std::uint32_t>& faces) {
+// Per face of `welded`, whether it is the first copy of its vertex triple.
+std::vector<char> first_copies(const std::vector<Triangle>& faces) {
+  std::vector<char> first(faces.size(), 0);
+  std::map<Key, char> seen;
+  for (std::size_t f = 0; f < faces.size(); ++f) first[f] = seen.try_emplace(sorted(faces[f]), 1).second;
+  return first;
+}
+
+// Per component representative: every face is there in both orientations,
+// and the first copies close up (every edge used an even number of times).
+std::vector<char> closed_double_sided(const std::vector<Triangle>& faces, const std::vector<std::size_t>& component,
+                                      const std::vector<char>& first) {
+  std::map<Key, std::array<std::size_t, 2>> orientations;  // per vertex triple: copies along, against
+  for (const Triangle& t : faces) ++orientations[sorted(t)][along_sorted(t) ? 0 : 1];
+  std::vector<char> eligible(faces.size(), 1);
+  std::map<std::pair<std::size_t, Edge>, std::size_t> edge_uses;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const auto& copies = orientations[sorted(faces[f])];
+    if (copies[0] == 0 || copies[1] == 0) eligible[component[f]] = 0;
+    if (first[f])
+      for (int i = 0; i < 3; ++i) ++edge_uses[{component[f], edge(faces[f], i)}];
+  }
+  for (const auto& [use, count] : edge_uses)
+    if (count % 2 != 0) eligible[use.first] = 0;
+  return eligible;
+}
+
+double signed_volume(const TriangleSoup& soup, const std::vector<std::size_t>& faces) {
   Vec3d centre = Vec3d::Zero();
-  for (std::uint32_t f : faces)
+  for (std::size_t f : faces)
     for (Index v : soup.triangles[f]) centre += soup.positions[v];
   centre /= double(3 * faces.size());
   double volume = 0.0;
-  for (std::uint32_t f : faces) {
+  for (std::size_t f : faces) {
     const Triangle& t = soup.triangles[f];
     volume += (soup.positions[t[0]] - centre).dot((soup.positions[t[1]] - centre).cross(soup.positions[t[2]] - centre));
   }
   return volume;
+}
+
+// Orients `faces` of `welded` (first copies of eligible components)
+// coherently, each component outward; returns per face whether it must be
+// reversed.
+std::vector<char> outward_flips(const TriangleSoup& welded, const std::vector<std::size_t>& faces,
+                                const std::vector<std::size_t>& component) {
+  TriangleSoup sheet;
+  sheet.positions = welded.positions;
+  for (std::size_t f : faces) sheet.triangles.push_back(welded.triangles[f]);
+  orient_coherently(sheet);
+  std::map<std::size_t, std::vector<std::size_t>> by_component;  // sheet face indices
+  for (std::size_t i = 0; i < faces.size(); ++i) by_component[component[faces[i]]].push_back(i);
+  for (const auto& [root, members] : by_component)
+    if (signed_volume(sheet, members) < 0.0)
+      for (std::size_t i : members) std::swap(sheet.triangles[i][1], sheet.triangles[i][2]);
+  std::vector<char> flip(faces.size());
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    flip[i] = along_sorted(sheet.triangles[i]) != along_sorted(welded.triangles[faces[i]]);
+  return flip;
 }
 
 }  // namespace
@@ -73,69 +108,24 @@ double signed_volume(const TriangleSoup& soup, const std::vector<std::uint32_t>&
 std::size_t make_double_sided_components_one_sided(TriangleSoup& soup) {
   const TriangleSoup welded = weld_identical_vertices(soup);
   const std::size_t n = welded.triangles.size();
-  std::map<Key, std::array<std::uint32_t, 2>> orientations;  // per sorted triple: copies along, against
-  for (const Triangle& t : welded.triangles) ++orientations[sorted(t)][along_sorted(t) ? 0 : 1];
-  const auto two_sided = [&](const Triangle& t) {
-    const auto& c = orientations[sorted(t)];
-    return c[0] > 0 && c[1] > 0;
-  };
-  const std::vector<std::uint32_t> component = components(welded.triangles);
-  std::vector<char> all_two_sided(n, 1);  // per component root
-  for (std::size_t f = 0; f < n; ++f)
-    if (!two_sided(welded.triangles[f])) all_two_sided[component[f]] = 0;
+  const std::vector<std::size_t> component = components(welded.triangles);
+  const std::vector<char> first = first_copies(welded.triangles);
+  const std::vector<char> eligible = closed_double_sided(welded.triangles, component, first);
 
-  // Keep the first copy of each face of a double-sided component.
   std::vector<char> keep(n, 1);
-  std::map<Key, char> seen;
-  std::size_t dropped = 0;
+  std::vector<std::size_t> one_sided;  // the first copies of eligible components
   for (std::size_t f = 0; f < n; ++f) {
-    if (!all_two_sided[component[f]]) continue;
-    if (!seen.try_emplace(sorted(welded.triangles[f]), 1).second) {
-      keep[f] = 0;
-      ++dropped;
-    }
+    if (!eligible[component[f]]) continue;
+    if (first[f]) one_sided.push_back(f);
+    else keep[f] = 0;
   }
-  // Only closed components: an open double-sided sheet is a wall of no
-  // thickness, which the pipeline thickens; made one-sided, its winding
-  // number would fill space on one side of it.
-  std::map<std::pair<std::uint32_t, std::pair<Index, Index>>, std::uint32_t> edge_uses;  // (component, edge)
-  for (std::size_t f = 0; f < n; ++f) {
-    if (!keep[f] || !all_two_sided[component[f]]) continue;
-    const Triangle& t = welded.triangles[f];
-    for (int i = 0; i < 3; ++i) ++edge_uses[{component[f], std::minmax(t[i], t[(i + 1) % 3])}];
-  }
-  for (const auto& [use, count] : edge_uses)
-    if (count % 2 != 0) all_two_sided[use.first] = 0;
-  for (std::size_t f = 0; f < n; ++f)
-    if (!keep[f] && !all_two_sided[component[f]]) {
-      keep[f] = 1;
-      --dropped;
-    }
+  const std::size_t dropped = n - static_cast<std::size_t>(std::count(keep.begin(), keep.end(), 1));
   if (dropped == 0) return 0;
 
-  // The kept faces of those components, as a soup of their own: oriented
-  // coherently, then each component flipped if it encloses negative volume.
-  TriangleSoup sheet;
-  sheet.positions = welded.positions;
-  std::vector<std::uint32_t> sheet_face;  // index into soup.triangles
-  for (std::size_t f = 0; f < n; ++f)
-    if (keep[f] && all_two_sided[component[f]]) {
-      sheet.triangles.push_back(welded.triangles[f]);
-      sheet_face.push_back(static_cast<std::uint32_t>(f));
-    }
-  orient_coherently(sheet);
-  std::map<std::uint32_t, std::vector<std::uint32_t>> by_component;
-  for (std::uint32_t i = 0; i < sheet.triangles.size(); ++i) by_component[component[sheet_face[i]]].push_back(i);
-  for (const auto& [root, faces] : by_component)
-    if (signed_volume(sheet, faces) < 0.0)
-      for (std::uint32_t i : faces) std::swap(sheet.triangles[i][1], sheet.triangles[i][2]);
-
-  // Write back on the soup's own indices: a sheet face is the soup face
-  // with its corners possibly reversed.
-  for (std::uint32_t i = 0; i < sheet.triangles.size(); ++i) {
-    Triangle& t = soup.triangles[sheet_face[i]];
-    if (along_sorted(sheet.triangles[i]) != along_sorted(welded.triangles[sheet_face[i]])) std::swap(t[1], t[2]);
-  }
+  // welded.triangles[f] is soup.triangles[f] on welded indices, corner for corner.
+  const std::vector<char> flip = outward_flips(welded, one_sided, component);
+  for (std::size_t i = 0; i < one_sided.size(); ++i)
+    if (flip[i]) std::swap(soup.triangles[one_sided[i]][1], soup.triangles[one_sided[i]][2]);
   std::size_t kept = 0;
   for (std::size_t f = 0; f < n; ++f) {
     if (!keep[f]) continue;

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <span>
 #include <string>
 
 namespace mr::tetmesh {
@@ -26,28 +27,45 @@ bool is_inside(double winding, WindingRule rule) {
   return (rule == WindingRule::absolute ? std::abs(winding) : winding) > 0.5;
 }
 
-TetClassification classify_tets(const Mesh& mesh, const WindingNumberTree& tree, WindingRule rule) {
-  std::vector<Vec3d> centroids;
-  std::vector<Index> slots;
-  centroids.reserve(mesh.num_tets());
-  slots.reserve(mesh.num_tets());
-  for (Index t = 0; t < mesh.tet_slots(); ++t) {
-    if (!mesh.tet_alive(t)) continue;
-    centroids.push_back(tet_centroid(mesh, t));
-    slots.push_back(t);
-  }
-  const std::vector<double> values = tree.evaluate(centroids);
+namespace {
+
+// The classification of the live tets `slots`, slots[i] having winding
+// number winding_of(i); winding_of is called once per i, in order.
+template <class WindingOf>
+TetClassification classification(const Mesh& mesh, std::span<const Index> slots, WindingRule rule,
+                                 WindingOf&& winding_of) {
   TetClassification result;
   result.winding.assign(mesh.tet_slots(), 0.0);
   result.keep.assign(mesh.tet_slots(), 0);
   for (std::size_t i = 0; i < slots.size(); ++i) {
-    result.winding[slots[i]] = values[i];
-    if (is_inside(values[i], rule)) {
+    const double w = winding_of(i);
+    result.winding[slots[i]] = w;
+    if (is_inside(w, rule)) {
       result.keep[slots[i]] = 1;
       ++result.kept;
     }
   }
   return result;
+}
+
+std::vector<Index> live_tets(const Mesh& mesh) {
+  std::vector<Index> slots;
+  slots.reserve(mesh.num_tets());
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (mesh.tet_alive(t)) slots.push_back(t);
+  }
+  return slots;
+}
+
+}  // namespace
+
+TetClassification classify_tets(const Mesh& mesh, const WindingNumberTree& tree, WindingRule rule) {
+  const std::vector<Index> slots = live_tets(mesh);
+  std::vector<Vec3d> centroids;
+  centroids.reserve(slots.size());
+  for (const Index t : slots) centroids.push_back(tet_centroid(mesh, t));
+  const std::vector<double> values = tree.evaluate(centroids);
+  return classification(mesh, slots, rule, [&](std::size_t i) { return values[i]; });
 }
 
 std::vector<double> tracked_surface_offsets(const Mesh& mesh, const TriangleSoup& input) {
@@ -113,11 +131,7 @@ TetClassification classify_tets_near_input(const Mesh& mesh, const WindingNumber
                                            const TriangleSoup& input, std::span<const char> left_out,
                                            std::span<const double> offsets, WindingRule rule,
                                            std::size_t* near_queries) {
-  std::vector<Index> slots;
-  slots.reserve(mesh.num_tets());
-  for (Index t = 0; t < mesh.tet_slots(); ++t) {
-    if (mesh.tet_alive(t)) slots.push_back(t);
-  }
+  const std::vector<Index> slots = live_tets(mesh);
   const OffsetGuard guard(input, left_out, offsets);
   std::vector<Vec3d> centroids(slots.size());
   std::vector<char> near(slots.size(), 0);
@@ -139,19 +153,9 @@ TetClassification classify_tets_near_input(const Mesh& mesh, const WindingNumber
   const std::vector<double> near_values = tracked.evaluate(near_points);
   if (near_queries != nullptr) *near_queries = near_points.size();
 
-  TetClassification result;
-  result.winding.assign(mesh.tet_slots(), 0.0);
-  result.keep.assign(mesh.tet_slots(), 0);
   std::size_t next_far = 0, next_near = 0;
-  for (std::size_t i = 0; i < slots.size(); ++i) {
-    const double w = near[i] ? near_values[next_near++] : far_values[next_far++];
-    result.winding[slots[i]] = w;
-    if (is_inside(w, rule)) {
-      result.keep[slots[i]] = 1;
-      ++result.kept;
-    }
-  }
-  return result;
+  return classification(mesh, slots, rule,
+                        [&](std::size_t i) { return near[i] ? near_values[next_near++] : far_values[next_far++]; });
 }
 
 std::vector<char> tets_near(const Mesh& mesh, const TriangleSoup& triangles) {
@@ -195,19 +199,8 @@ TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tr
   std::vector<Vec3d> queries;
   for (std::int32_t r = 1; r <= regions; ++r) queries.push_back(tet_centroid(mesh, largest[r]));
   const std::vector<double> values = tree.evaluate(queries);
-  TetClassification result;
-  result.winding.assign(mesh.tet_slots(), 0.0);
-  result.keep.assign(mesh.tet_slots(), 0);
-  for (Index t = 0; t < mesh.tet_slots(); ++t) {
-    if (!mesh.tet_alive(t)) continue;
-    const double w = values[labels[t] - 1];
-    result.winding[t] = w;
-    if (is_inside(w, rule)) {
-      result.keep[t] = 1;
-      ++result.kept;
-    }
-  }
-  return result;
+  const std::vector<Index> slots = live_tets(mesh);
+  return classification(mesh, slots, rule, [&](std::size_t i) { return values[labels[slots[i]] - 1]; });
 }
 
 TetMesh extract_tets(const Mesh& mesh, std::span<const char> keep) {
