@@ -1,25 +1,12 @@
 #include "boundary_defects.h"
 
+#include <mr/core/union_find.h>
+
 #include <algorithm>
-#include <numeric>
 #include <tuple>
 
 namespace mr::repair::detail {
 namespace {
-
-// Union-find over face corners (3 per face).
-class Corners {
- public:
-  explicit Corners(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), std::size_t(0)); }
-  std::size_t root(std::size_t i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void join(std::size_t a, std::size_t b) { parent_[root(a)] = root(b); }
-
- private:
-  std::vector<std::size_t> parent_;
-};
 
 struct EdgeUse {
   Index a, b;        // a < b
@@ -47,22 +34,22 @@ std::vector<EdgeUse> edge_uses(std::span<const Triangle> triangles) {
 BoundaryDefects find_boundary_defects(std::span<const Triangle> triangles) {
   BoundaryDefects defects;
   const std::vector<EdgeUse> uses = edge_uses(triangles);
-  Corners corners(3 * triangles.size());
+  UnionFind corners(3 * triangles.size());  // over face corners, 3 per face
   for (std::size_t i = 0; i < uses.size();) {
     std::size_t j = i + 1;
     while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b) ++j;
     if (j - i == 1) ++defects.boundary_edges;
     if (j - i > 2) defects.nonmanifold_edges.push_back({uses[i].a, uses[i].b});
     for (std::size_t k = i + 1; k < j; ++k) {
-      corners.join(3 * uses[i].face + uses[i].corner_a, 3 * uses[k].face + uses[k].corner_a);
-      corners.join(3 * uses[i].face + uses[i].corner_b, 3 * uses[k].face + uses[k].corner_b);
+      corners.unite(3 * uses[i].face + uses[i].corner_a, 3 * uses[k].face + uses[k].corner_a);
+      corners.unite(3 * uses[i].face + uses[i].corner_b, 3 * uses[k].face + uses[k].corner_b);
     }
     i = j;
   }
   std::vector<std::pair<Index, std::size_t>> fans;  // (vertex, root of one of its corners)
   fans.reserve(3 * triangles.size());
   for (std::size_t f = 0; f < triangles.size(); ++f)
-    for (int c = 0; c < 3; ++c) fans.emplace_back(triangles[f][c], corners.root(3 * f + c));
+    for (int c = 0; c < 3; ++c) fans.emplace_back(triangles[f][c], corners.find(3 * f + c));
   std::sort(fans.begin(), fans.end());
   fans.erase(std::unique(fans.begin(), fans.end()), fans.end());
   for (std::size_t i = 1; i < fans.size(); ++i)
