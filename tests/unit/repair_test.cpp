@@ -68,11 +68,12 @@ TetMesh fine_cube_tets(int n) {
 
 double epsilon_of(const TriangleSoup& input) { return 1e-3 * bounding_box_diagonal(input); }
 
-repair::RepairResult repair_tets(const TetMesh& tets, const TriangleSoup& input, bool cleanup = true) {
+repair::RepairResult repair_tets(const TetMesh& tets, const TriangleSoup& input, bool cleanup = true,
+                                 std::span<const std::uint8_t> inside = {}) {
   repair::RepairOptions options;
   options.epsilon = epsilon_of(input);
   options.cleanup = cleanup;
-  return repair::repair_surface_from_tets(tets, input, options);
+  return repair::repair_surface_from_tets(tets, inside, input, options);
 }
 
 // Everything the issue asks of a repaired surface, measured independently.
@@ -180,6 +181,71 @@ TEST_CASE("random tet subsets of a block become watertight surfaces", "[repair]"
   }
 }
 
+TEST_CASE("random tet subsets with the rest of the block on offer become watertight surfaces", "[repair]") {
+  // The manifold fix may now add rejected tets as well as remove kept ones,
+  // and splits lock rejected tets out: every mix must still end manifold.
+  const TetMesh block = fine_cube_tets(3);
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    CAPTURE(seed);
+    std::mt19937 random(seed);
+    std::vector<std::uint8_t> inside(block.tets.size());
+    TetMesh kept;
+    kept.positions = block.positions;
+    for (std::size_t t = 0; t < block.tets.size(); ++t) {
+      inside[t] = random() % 2;
+      if (inside[t]) kept.tets.push_back(block.tets[t]);
+    }
+    const TriangleSoup input = extract_boundary(kept);
+    const repair::RepairResult result = repair_tets(block, input, true, inside);
+    const check::SurfaceReport r = check::check_surface(result.surface);
+    CAPTURE(r.boundary_edges, r.nonmanifold_edges, r.nonmanifold_vertices, r.self_intersecting_pairs,
+            result.manifold.removed_tets, result.manifold.added_tets, result.manifold.vertex_copies);
+    REQUIRE(r.watertight());
+    REQUIRE(r.vertices == result.surface.positions.size());
+    REQUIRE(r.volume <= test::tet_volume(block) + 1e-9);
+  }
+}
+
+TEST_CASE("a pinch in a thin layer is closed by adding rejected tets", "[repair]") {
+  // A 2x2x3 block whose thin middle layer lacks two diagonal cells: the
+  // middle vertical edge is non-manifold, and both its ends have connected
+  // stars, so no split helps. Removing the kept tets of one side would
+  // expose faces as far from the input as the cells are wide; adding the
+  // rejected tets of the thin layer around the edge keeps the surface
+  // within the layer's thickness of the input.
+  constexpr double kThin = 1e-4;
+  std::vector<Cell> cells;
+  for (int z = 0; z < 3; ++z)
+    for (int x = 0; x < 2; ++x)
+      for (int y = 0; y < 2; ++y) cells.push_back({x, y, z});
+  TetMesh block = grid_tets(cells);
+  for (Vec3d& p : block.positions) p.z() = p.z() <= 1 ? p.z() : p.z() - 1 + kThin;
+  std::vector<std::uint8_t> inside(block.tets.size());
+  TetMesh kept;
+  kept.positions = block.positions;
+  for (std::size_t t = 0; t < block.tets.size(); ++t) {
+    const Cell& cell = cells[t / 6];
+    inside[t] = cell != Cell{1, 0, 1} && cell != Cell{0, 1, 1};
+    if (inside[t]) kept.tets.push_back(block.tets[t]);
+  }
+  const TriangleSoup input = extract_boundary(kept);
+  REQUIRE(check::check_surface(input).nonmanifold_edges == 1);  // the fixture really is pinched
+
+  const repair::RepairResult result = repair_tets(block, input, false, inside);
+  REQUIRE(result.manifold.nonmanifold_edges_found == 1);
+  REQUIRE(result.manifold.vertex_copies == 0);
+  REQUIRE(result.manifold.removed_tets == 0);
+  REQUIRE(result.manifold.added_tets > 0);
+  REQUIRE(result.manifold.faces_outside_envelope == 0);
+  const check::SurfaceReport r = check::check_surface(result.surface);
+  REQUIRE(r.watertight());
+  REQUIRE(r.vertices == result.surface.positions.size());
+  REQUIRE(r.volume == Approx(test::tet_volume(kept)).margin(2 * kThin));
+  const double out_to_in = check::one_sided_distance(result.surface, input).max;
+  CAPTURE(out_to_in, check::one_sided_distance(input, result.surface).max);
+  REQUIRE(out_to_in <= 2 * kThin);
+}
+
 TEST_CASE("the clean-up makes a dense peeled surface coarse inside the envelope", "[repair]") {
   const TetMesh tets = fine_cube_tets(4);
   const TriangleSoup input = test::cube_soup();
@@ -195,12 +261,16 @@ TEST_CASE("the clean-up makes a dense peeled surface coarse inside the envelope"
 TEST_CASE("the repair refuses bad options and empty tet sets", "[repair]") {
   const TriangleSoup input = test::cube_soup();
   repair::RepairOptions options;
-  REQUIRE_THROWS_AS(repair::repair_surface_from_tets(test::cube_tets(), input, options), UsageError);
+  REQUIRE_THROWS_AS(repair::repair_surface_from_tets(test::cube_tets(), {}, input, options), UsageError);
   options.epsilon = 1e-3;
-  REQUIRE_THROWS_AS(repair::repair_surface_from_tets(TetMesh{}, input, options), RunError);
+  REQUIRE_THROWS_AS(repair::repair_surface_from_tets(TetMesh{}, {}, input, options), RunError);
+  const std::vector<std::uint8_t> none_inside(test::cube_tets().tets.size(), 0);
+  REQUIRE_THROWS_AS(repair::repair_surface_from_tets(test::cube_tets(), none_inside, input, options), RunError);
+  const std::vector<std::uint8_t> too_few(2, 1);
+  REQUIRE_THROWS_AS(repair::repair_surface_from_tets(test::cube_tets(), too_few, input, options), UsageError);
   TetMesh broken = test::cube_tets();
   broken.tets[0][0] = 99;
-  REQUIRE_THROWS_AS(repair::repair_surface_from_tets(broken, input, options), UsageError);
+  REQUIRE_THROWS_AS(repair::repair_surface_from_tets(broken, {}, input, options), UsageError);
 }
 
 namespace {

@@ -79,6 +79,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   tetmesh::PipelineOptions pipeline_options;
   pipeline_options.tetrahedralize = options.tetrahedralize;
   pipeline_options.filter = true;
+  pipeline_options.keep_rejected = true;  // the manifold fix may add some back
   // |w| > 1/2: a solid whose faces all point inward is repaired too (the
   // peeled surface is oriented by the tets, so it comes out outward).
   pipeline_options.tetrahedralize.winding_rule = tetmesh::WindingRule::absolute;
@@ -89,7 +90,8 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   repair_options.epsilon = pipeline.parameters.epsilon;
   repair_options.threads = options.tetrahedralize.threads;
   repair_options.cleanup = options.cleanup;
-  const repair::RepairResult repaired = repair::repair_surface_from_tets(pipeline.mesh, input, repair_options);
+  std::vector<std::uint8_t> inside(pipeline.mesh.tet_labels.begin(), pipeline.mesh.tet_labels.end());
+  const repair::RepairResult repaired = repair::repair_surface_from_tets(pipeline.mesh, inside, input, repair_options);
   if (options.verbose && !options.quiet) {
     for (const repair::StageTime& stage : repaired.stages)
       err << "meshrepair: end " << stage.name << " (" << stage.seconds << " s)\n";

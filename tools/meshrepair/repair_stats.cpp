@@ -4,6 +4,7 @@
 #include <mr/check/surface_check.h>
 #include <mr/core/errors.h>
 
+#include <algorithm>
 #include <chrono>
 
 namespace mr::tools {
@@ -57,7 +58,8 @@ nlohmann::json repair_figures(const repair::RepairResult& r) {
           {"nonmanifold_vertices_found", r.manifold.nonmanifold_vertices_found},
           {"vertex_copies", r.manifold.vertex_copies},
           {"removed_tets", r.manifold.removed_tets},
-          {"removal_faces_outside_envelope", r.manifold.faces_outside_envelope},
+          {"added_tets", r.manifold.added_tets},
+          {"edit_faces_outside_envelope", r.manifold.faces_outside_envelope},
           {"manifold_rounds", r.manifold.rounds},
           {"peeled_faces", r.peeled_faces},
           {"collapses", r.collapses},
@@ -84,7 +86,8 @@ nlohmann::json make_repair_stats(const RepairRun& run) {
   nlohmann::json stats = {{"input", input_defects(run.input)},
                           {"epsilon_abs", run.pipeline.parameters.epsilon},
                           {"bbox_diagonal", run.pipeline.parameters.diagonal},
-                          {"kept_tets", run.pipeline.mesh.tets.size()},
+                          {"kept_tets", std::count(run.pipeline.mesh.tet_labels.begin(),
+                                                   run.pipeline.mesh.tet_labels.end(), 1)},
                           {"repair", repair_figures(run.repair)},
                           {"output", output_figures(run)},
                           {"stages", stage_seconds(run)}};

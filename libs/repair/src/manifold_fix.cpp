@@ -1,7 +1,7 @@
 #include <mr/repair/manifold_fix.h>
 
 #include "boundary_defects.h"
-#include "tet_removal.h"
+#include "solid_edit.h"
 #include "tet_set.h"
 #include "vertex_split.h"
 
@@ -32,11 +32,11 @@ std::vector<Index> defect_vertices(const BoundaryDefects& defects) {
   return vertices;
 }
 
-std::size_t split_round(TetMesh& mesh, const FaceNeighbours& neighbours, const std::vector<FaceRef>& boundary,
-                        const BoundaryDefects& defects, double max_move) {
+std::size_t split_round(TetMesh& mesh, std::vector<TetState>& states, const FaceNeighbours& neighbours,
+                        const std::vector<FaceRef>& boundary, const BoundaryDefects& defects, double max_move) {
   const VertexStars stars(mesh.tets, mesh.positions.size());
   const spatial::BoxGrid grid = grid_of_boundary(mesh, boundary, max_move);
-  const SplitContext context{mesh, neighbours, boundary, max_move, grid};
+  const SplitContext context{mesh, neighbours, states, boundary, max_move, grid};
   std::size_t copies = 0;
   for (Index v : defect_vertices(defects)) copies += split_vertex(context, v, stars.of(v));
   return copies;
@@ -49,54 +49,107 @@ std::vector<Index> tets_around_edge(const VertexStars& stars, const std::array<I
   return both;
 }
 
-// Removes, for each defect whose tets are all still there, the best
-// candidate: one fan around a non-manifold edge; one class of the tets
-// around a non-manifold vertex, or all of them when they are connected.
-class RemovalRound {
+// The tets of `region` in the solid, and those the fix may add, each split
+// into face-connected classes.
+std::vector<std::vector<Index>> edit_candidates(const FaceNeighbours& neighbours, std::span<const TetState> states,
+                                                const std::vector<Index>& region, bool whole_solid_if_connected) {
+  std::vector<Index> solid, rejected;
+  for (Index t : region) {
+    if (in_solid(states[t])) solid.push_back(t);
+    else if (states[t] == TetState::rejected) rejected.push_back(t);
+  }
+  auto candidates = face_connected_classes(neighbours, solid);
+  if (whole_solid_if_connected && candidates.size() == 1) candidates.front() = solid;
+  for (auto& c : face_connected_classes(neighbours, rejected)) candidates.push_back(std::move(c));
+  return candidates;
+}
+
+// Edits the solid once for each defect whose tets are all unchanged this
+// round: removes the best fan of solid tets around a non-manifold edge, or
+// one class of them around a non-manifold vertex (all of them when they
+// are connected), or adds a fan of rejected tets there instead.
+class EditRound {
  public:
-  RemovalRound(TetMesh& mesh, const FaceNeighbours& neighbours, const envelope::Envelope* envelope,
-               ManifoldFixStats& stats)
-      : mesh_(mesh), neighbours_(neighbours), envelope_(envelope), stats_(stats),
-        stars_(mesh.tets, mesh.positions.size()), removed_(mesh.tets.size(), 0), remaining_(mesh.tets.size()) {}
+  EditRound(const TetMesh& mesh, std::vector<TetState>& states, const FaceNeighbours& neighbours,
+            const envelope::Envelope* envelope, ManifoldFixStats& stats)
+      : mesh_(mesh), states_(states), neighbours_(neighbours), envelope_(envelope), stats_(stats),
+        stars_(mesh.tets, mesh.positions.size()), changed_(mesh.tets.size(), 0),
+        solid_tets_(std::count_if(states.begin(), states.end(), in_solid)) {}
 
   std::size_t run(const BoundaryDefects& defects) {
+    std::size_t edits = 0;
     for (const auto& edge : defects.nonmanifold_edges) {
       const std::vector<Index> around = tets_around_edge(stars_, edge);
-      remove_one_of(face_connected_classes(neighbours_, around), around);
+      edits += edit_one_of(edit_candidates(neighbours_, states_, around, false), around);
     }
     for (Index v : defects.nonmanifold_vertices) {
       const std::vector<Index> star(stars_.of(v).begin(), stars_.of(v).end());
-      auto classes = face_connected_classes(neighbours_, star);
-      if (classes.size() == 1) classes.front() = star;
-      remove_one_of(classes, star);
+      edits += edit_one_of(edit_candidates(neighbours_, states_, star, true), star);
     }
-    const std::size_t removed = mesh_.tets.size() - remaining_;
-    std::size_t kept = 0;
-    for (std::size_t t = 0; t < mesh_.tets.size(); ++t)
-      if (!removed_[t]) mesh_.tets[kept++] = mesh_.tets[t];
-    mesh_.tets.resize(kept);
-    return removed;
+    return edits;
   }
 
  private:
-  void remove_one_of(const std::vector<std::vector<Index>>& candidates, const std::vector<Index>& region) {
-    if (std::any_of(region.begin(), region.end(), [&](Index t) { return removed_[t] != 0; })) return;
-    const auto choice = choose_removal(mesh_, neighbours_, removed_, remaining_, candidates, envelope_);
-    if (!choice) return;
-    for (Index t : choice->tets) removed_[t] = 1;
-    remaining_ -= choice->tets.size();
-    stats_.removed_tets += choice->tets.size();
-    stats_.faces_outside_envelope += choice->faces_outside;
+  std::size_t edit_one_of(const std::vector<std::vector<Index>>& candidates, const std::vector<Index>& region) {
+    if (std::any_of(region.begin(), region.end(), [&](Index t) { return changed_[t] != 0; })) return 0;
+    const auto edit = choose_edit(mesh_, neighbours_, states_, solid_tets_, candidates, envelope_);
+    if (!edit) return 0;
+    for (Index t : edit->tets) {
+      states_[t] = edit->add ? TetState::added : TetState::locked_out;
+      changed_[t] = 1;
+    }
+    if (edit->add) {
+      solid_tets_ += edit->tets.size();
+      stats_.added_tets += edit->tets.size();
+    } else {
+      solid_tets_ -= edit->tets.size();
+      stats_.removed_tets += edit->tets.size();
+    }
+    stats_.faces_outside_envelope += edit->faces_outside;
+    return 1;
   }
 
-  TetMesh& mesh_;
+  const TetMesh& mesh_;
+  std::vector<TetState>& states_;
   const FaceNeighbours& neighbours_;
   const envelope::Envelope* envelope_;
   ManifoldFixStats& stats_;
   VertexStars stars_;
-  std::vector<std::uint8_t> removed_;
-  std::size_t remaining_;
+  std::vector<std::uint8_t> changed_;
+  std::size_t solid_tets_;
 };
+
+std::vector<TetState> initial_states(std::span<const std::uint8_t> inside, std::size_t tets) {
+  if (!inside.empty() && inside.size() != tets)
+    throw UsageError("manifold fix: " + std::to_string(inside.size()) + " inside flags for " + std::to_string(tets) +
+                     " tets");
+  std::vector<TetState> states(tets, TetState::kept);
+  for (std::size_t t = 0; t < inside.size(); ++t)
+    if (inside[t] == 0) states[t] = TetState::rejected;
+  return states;
+}
+
+// Leaves in `mesh` the solid's tets and the vertices they use.
+void keep_solid_only(TetMesh& mesh, std::span<const TetState> states) {
+  constexpr Index kUnused = Index(-1);
+  std::vector<Index> new_index(mesh.positions.size(), kUnused);
+  std::vector<Vec3d> positions;
+  std::size_t tets = 0;
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    if (!in_solid(states[t])) continue;
+    Tet tet = mesh.tets[t];
+    for (Index& v : tet) {
+      if (new_index[v] == kUnused) {
+        new_index[v] = static_cast<Index>(positions.size());
+        positions.push_back(mesh.positions[v]);
+      }
+      v = new_index[v];
+    }
+    mesh.tets[tets++] = tet;
+  }
+  mesh.tets.resize(tets);
+  mesh.positions = std::move(positions);
+}
 
 std::string describe(const BoundaryDefects& defects) {
   return std::to_string(defects.nonmanifold_edges.size()) + " non-manifold edges and " +
@@ -105,18 +158,19 @@ std::string describe(const BoundaryDefects& defects) {
 
 }  // namespace
 
-ManifoldFixStats make_boundary_manifold(TetMesh& mesh, const envelope::Envelope* envelope,
-                                        const ManifoldFixOptions& options) {
+ManifoldFixStats make_boundary_manifold(TetMesh& mesh, std::span<const std::uint8_t> inside,
+                                        const envelope::Envelope* envelope, const ManifoldFixOptions& options) {
   if (!(options.max_move > 0.0) || !std::isfinite(options.max_move))
     throw UsageError("manifold fix: the largest vertex move must be finite and > 0");
   if (options.max_rounds < 1) throw UsageError("manifold fix: at least one round is needed");
   mesh.tet_labels.clear();
   mesh.faces.clear();
   mesh.face_labels.clear();
+  std::vector<TetState> states = initial_states(inside, mesh.tets.size());
   ManifoldFixStats stats;
   for (int round = 0;; ++round) {
     const FaceNeighbours neighbours(mesh.tets);
-    const std::vector<FaceRef> boundary = boundary_faces(neighbours, mesh.tets.size());
+    const std::vector<FaceRef> boundary = boundary_faces(neighbours, states);
     const BoundaryDefects defects = find_boundary_defects(triangles_of(mesh, boundary));
     if (round == 0) {
       stats.nonmanifold_edges_found = defects.nonmanifold_edges.size();
@@ -124,16 +178,18 @@ ManifoldFixStats make_boundary_manifold(TetMesh& mesh, const envelope::Envelope*
     }
     if (defects.manifold()) {
       stats.rounds = round;
+      keep_solid_only(mesh, states);
       return stats;
     }
     if (round == options.max_rounds)
       throw RunError("repair: the boundary is still not manifold after " + std::to_string(round) +
                      " rounds: " + describe(defects));
-    const std::size_t copies = split_round(mesh, neighbours, boundary, defects, options.max_move);
+    const std::size_t copies = split_round(mesh, states, neighbours, boundary, defects, options.max_move);
     stats.vertex_copies += copies;
     if (copies > 0) continue;
-    if (RemovalRound(mesh, neighbours, envelope, stats).run(defects) == 0)
-      throw RunError("repair: cannot make the boundary manifold without removing every tet: " + describe(defects));
+    if (EditRound(mesh, states, neighbours, envelope, stats).run(defects) == 0)
+      throw RunError("repair: cannot make the boundary manifold: every edit left would remove the last tet or "
+                     "change a tet twice: " + describe(defects));
   }
 }
 

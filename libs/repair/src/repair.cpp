@@ -7,6 +7,7 @@
 #include <mr/envelope/envelope.h>
 #include <mr/simplify/simplify.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -35,15 +36,21 @@ class StageClock {
   std::chrono::steady_clock::time_point start_;
 };
 
-void check_arguments(const TetMesh& kept, const TriangleSoup& input, const RepairOptions& options) {
+void check_arguments(const TetMesh& mesh, std::span<const std::uint8_t> inside, const TriangleSoup& input,
+                     const RepairOptions& options) {
   if (!(options.epsilon > 0.0) || !std::isfinite(options.epsilon))
     throw UsageError("repair: epsilon must be finite and > 0");
   if (options.threads < 0) throw UsageError("repair: thread count must be >= 0");
-  if (const std::string problem = find_tet_mesh_inconsistency(kept); !problem.empty())
+  if (const std::string problem = find_tet_mesh_inconsistency(mesh); !problem.empty())
     throw UsageError("repair: inconsistent tet mesh: " + problem);
   if (const std::string problem = find_soup_inconsistency(input); !problem.empty())
     throw UsageError("repair: inconsistent input soup: " + problem);
-  if (kept.tets.empty()) throw RunError("repair: no tet was kept: the input encloses no volume");
+  if (!inside.empty() && inside.size() != mesh.tets.size())
+    throw UsageError("repair: " + std::to_string(inside.size()) + " inside flags for " +
+                     std::to_string(mesh.tets.size()) + " tets");
+  const bool any_inside =
+      inside.empty() ? !mesh.tets.empty() : std::any_of(inside.begin(), inside.end(), [](auto f) { return f != 0; });
+  if (!any_inside) throw RunError("repair: no tet was kept: the input encloses no volume");
 }
 
 TriangleSoup clean_up(const TriangleSoup& peeled, const TriangleSoup& input, const RepairOptions& options,
@@ -59,12 +66,13 @@ TriangleSoup clean_up(const TriangleSoup& peeled, const TriangleSoup& input, con
 
 }  // namespace
 
-RepairResult repair_surface_from_tets(const TetMesh& kept, const TriangleSoup& input, const RepairOptions& options) {
-  check_arguments(kept, input, options);
+RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::uint8_t> inside,
+                                      const TriangleSoup& input, const RepairOptions& options) {
+  check_arguments(mesh, inside, input, options);
   RepairResult result;
   TetMesh work;
-  work.positions = kept.positions;
-  work.tets = kept.tets;
+  work.positions = mesh.positions;
+  work.tets = mesh.tets;
   {
     StageClock clock(result, "manifold");
     std::unique_ptr<envelope::Envelope> envelope;
@@ -76,7 +84,7 @@ RepairResult repair_surface_from_tets(const TetMesh& kept, const TriangleSoup& i
     ManifoldFixOptions fix;
     fix.max_move = kMoveFraction * options.epsilon;
     fix.max_rounds = options.max_manifold_rounds;
-    result.manifold = make_boundary_manifold(work, envelope.get(), fix);
+    result.manifold = make_boundary_manifold(work, inside, envelope.get(), fix);
   }
   {
     StageClock clock(result, "peel");

@@ -57,11 +57,13 @@ FaceNeighbours::FaceNeighbours(const std::vector<Tet>& tets) : across_(4 * tets.
   }
 }
 
-std::vector<FaceRef> boundary_faces(const FaceNeighbours& neighbours, std::size_t tets) {
+std::vector<FaceRef> boundary_faces(const FaceNeighbours& neighbours, std::span<const TetState> states) {
   std::vector<FaceRef> faces;
-  for (std::size_t t = 0; t < tets; ++t)
+  for (std::size_t t = 0; t < states.size(); ++t) {
+    if (!in_solid(states[t])) continue;
     for (int k = 0; k < 4; ++k)
-      if (neighbours.across(Index(t), k) == kNoTet) faces.push_back({Index(t), k});
+      if (on_boundary(neighbours, states, Index(t), k)) faces.push_back({Index(t), k});
+  }
   return faces;
 }
 

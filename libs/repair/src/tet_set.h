@@ -1,9 +1,11 @@
 #pragma once
 // Helpers on a plain list of tets: outward faces, vertex stars, which tets
-// share a face, and classes of tets connected through shared faces.
+// share a face, classes of tets connected through shared faces, and which
+// tets make up the solid the manifold fix works on.
 
 #include <mr/core/tet_mesh.h>
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -45,14 +47,33 @@ class FaceNeighbours {
   std::vector<Index> across_;
 };
 
+/// What a tet is to the solid, and what the manifold fix may still do with
+/// it. Each tet changes at most once (kept -> removed, rejected -> added), so
+/// the fix cannot undo its own edits and go round in circles.
+enum class TetState : std::uint8_t {
+  kept,        ///< in the solid; may be removed
+  added,       ///< was rejected, added by the fix; stays
+  rejected,    ///< outside the solid; may be added
+  locked_out,  ///< outside and stays there (removed, or next to a split vertex)
+};
+
+inline bool in_solid(TetState s) { return s == TetState::kept || s == TetState::added; }
+
 /// Face `face` of tet `tet`.
 struct FaceRef {
   Index tet;
   int face;
 };
 
-/// The faces no other tet shares, in tet order.
-std::vector<FaceRef> boundary_faces(const FaceNeighbours& neighbours, std::size_t tets);
+/// The faces of the solid's tets that no other tet of the solid shares, in
+/// tet order.
+std::vector<FaceRef> boundary_faces(const FaceNeighbours& neighbours, std::span<const TetState> states);
+
+/// Face k of solid tet t is on the boundary of the solid.
+inline bool on_boundary(const FaceNeighbours& neighbours, std::span<const TetState> states, Index t, int k) {
+  const Index other = neighbours.across(t, k);
+  return other == kNoTet || !in_solid(states[other]);
+}
 
 /// `subset` split into classes of tets connected through faces they share;
 /// classes ordered by decreasing size, then by smallest tet.

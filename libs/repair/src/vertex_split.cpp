@@ -77,7 +77,8 @@ bool new_faces_apart(const SplitContext& context, Index w, std::span<const Index
   for (Index t : tets)
     for (int k = 0; k < 4; ++k) {
       const Triangle f = tet_face(mesh.tets[t], k);
-      if (context.neighbours.across(t, k) != kNoTet || std::find(f.begin(), f.end(), w) == f.end()) continue;
+      if (!on_boundary(context.neighbours, context.states, t, k) || std::find(f.begin(), f.end(), w) == f.end())
+        continue;
       around.push_back({f, {t, k}});
       for (Index v : f) reach.add(mesh.positions[v]);
     }
@@ -149,7 +150,10 @@ spatial::BoxGrid grid_of_boundary(const TetMesh& mesh, const std::vector<FaceRef
 }
 
 std::size_t split_vertex(const SplitContext& context, Index v, std::span<const Index> star) {
-  const std::vector<std::vector<Index>> classes = face_connected_classes(context.neighbours, star);
+  std::vector<Index> solid;
+  for (Index t : star)
+    if (in_solid(context.states[t])) solid.push_back(t);
+  const std::vector<std::vector<Index>> classes = face_connected_classes(context.neighbours, solid);
   std::size_t copies = 0;
   TetMesh& mesh = context.mesh;
   for (std::size_t c = 1; c < classes.size(); ++c) {
@@ -163,6 +167,9 @@ std::size_t split_vertex(const SplitContext& context, Index v, std::span<const I
     rename(mesh, classes[c], copy, v);
     mesh.positions.pop_back();
   }
+  if (copies > 0)
+    for (Index t : star)
+      if (context.states[t] == TetState::rejected) context.states[t] = TetState::locked_out;
   return copies;
 }
 

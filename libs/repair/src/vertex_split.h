@@ -12,7 +12,10 @@ namespace mr::repair::detail {
 struct SplitContext {
   TetMesh& mesh;
   const FaceNeighbours& neighbours;    ///< of mesh.tets
-  const std::vector<FaceRef>& boundary;  ///< boundary_faces(neighbours, ...)
+  /// One per tet of mesh.tets. A split locks out the rejected tets around
+  /// the vertex: they still meet the split classes at the old position.
+  std::vector<TetState>& states;
+  const std::vector<FaceRef>& boundary;  ///< boundary_faces(neighbours, states)
   double max_move = 0.0;
   /// Indices into `boundary`, each face's box grown by max_move: the box
   /// still covers the face after the moves of one round.
@@ -22,7 +25,8 @@ struct SplitContext {
 /// The grid SplitContext::boundary_grid asks for.
 spatial::BoxGrid grid_of_boundary(const TetMesh& mesh, const std::vector<FaceRef>& boundary, double max_move);
 
-/// Gives every class of `star` (the tets around v) but the largest its own
+/// Gives every class of the solid's tets in `star` (every tet around v) but
+/// the largest its own
 /// copy of v, moved into the interior of that class's largest tet. A class
 /// whose copy finds no valid position (every tet of the class positive, no
 /// improper meeting of the new boundary faces with any boundary face, exact)

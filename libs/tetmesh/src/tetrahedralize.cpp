@@ -310,7 +310,12 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
   }
   {
     StageTimer timer(result.stats, "output", logger);
-    if (options.filter) {
+    if (options.filter && options.keep_rejected) {
+      result.mesh = to_tet_mesh(mesh);
+      for (Index t = 0; t < mesh.tet_slots(); ++t) {
+        if (mesh.tet_alive(t)) result.mesh.tet_labels.push_back(keep[t] != 0 ? 1 : 0);
+      }
+    } else if (options.filter) {
       result.mesh = extract_tets(mesh, keep);
       result.mesh.tet_labels.assign(result.mesh.tets.size(), 1);
     } else {
@@ -357,7 +362,9 @@ PipelineResult solid_from_sheets(const TriangleSoup& input, const PipelineOption
 
 PipelineResult run_to_solid(const TriangleSoup& input, const PipelineOptions& options, const Logger& logger) {
   PipelineResult result = run(input, options, {}, logger);
-  if (!options.filter || !result.mesh.tets.empty()) return result;
+  const auto& labels = result.mesh.tet_labels;
+  const bool kept_some = std::find(labels.begin(), labels.end(), 1) != labels.end();
+  if (!options.filter || kept_some) return result;
   return solid_from_sheets(input, options, std::move(result), logger);
 }
 

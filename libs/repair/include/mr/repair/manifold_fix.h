@@ -10,14 +10,20 @@
 //     of the new boundary meets another face improperly (exact tests);
 //   - what a split cannot resolve (a non-manifold edge or vertex whose tets
 //     are connected, or a split with no valid move) is resolved by removing
-//     the tets of one fan around it, choosing the candidate whose new
-//     boundary faces stay inside the envelope, then the smallest volume.
+//     the solid's tets of one fan around it, or by adding one fan of the
+//     tets the filter rejected there (which joins the fans it lies between),
+//     choosing the candidate whose new boundary faces stay inside the
+//     envelope, then the smallest volume. Adding matters where two parts
+//     of a solid nearly touch: removing a fan there exposes faces far from
+//     the input.
 // Rounds repeat until the boundary is manifold.
 
 #include <mr/core/tet_mesh.h>
 #include <mr/envelope/envelope.h>
 
 #include <cstddef>
+#include <cstdint>
+#include <span>
 
 namespace mr::repair {
 
@@ -33,17 +39,22 @@ struct ManifoldFixStats {
   std::size_t nonmanifold_vertices_found = 0;  ///< idem, vertices
   std::size_t vertex_copies = 0;               ///< split copies made and moved
   std::size_t removed_tets = 0;
-  /// New boundary faces left by removals that are not inside the envelope.
+  std::size_t added_tets = 0;  ///< rejected tets added to the solid
+  /// New boundary faces left by removals and additions that are not inside
+  /// the envelope.
   std::size_t faces_outside_envelope = 0;
   int rounds = 0;
 };
 
-/// Edits `mesh` (positions and tets; labels and tagged faces are dropped)
-/// until the boundary of its tets is manifold. Tets must be positively
-/// oriented and form a valid embedding. `envelope` (may be null) guides the
-/// choice of removals. Throws mr::RunError when the rounds run out or when
-/// every tet would have to go.
-ManifoldFixStats make_boundary_manifold(TetMesh& mesh, const envelope::Envelope* envelope,
-                                        const ManifoldFixOptions& options);
+/// Edits `mesh` until the boundary of its solid is manifold, and leaves in
+/// it the solid's tets only (labels and tagged faces are dropped). `inside`
+/// flags the tets of the solid, one per tet, or is empty when every tet is;
+/// the others are the tets the winding-number filter rejected, which the
+/// fix may add. Tets must be positively oriented and form a valid
+/// embedding. `envelope` (may be null) guides the choice of removals and
+/// additions. Throws mr::UsageError when `inside` has the wrong size, and
+/// mr::RunError when the rounds run out or when every tet would have to go.
+ManifoldFixStats make_boundary_manifold(TetMesh& mesh, std::span<const std::uint8_t> inside,
+                                        const envelope::Envelope* envelope, const ManifoldFixOptions& options);
 
 }  // namespace mr::repair

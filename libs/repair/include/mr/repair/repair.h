@@ -12,6 +12,8 @@
 #include <mr/core/triangle_soup.h>
 #include <mr/repair/manifold_fix.h>
 
+#include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -44,13 +46,16 @@ struct RepairResult {
   std::vector<StageTime> stages;  ///< "manifold", "peel", "cleanup", in order
 };
 
-/// Repairs the boundary of `kept` (positively oriented tets, e.g. the output
-/// of the winding-number filter) and returns it as a surface. `input` is the
-/// original input soup whose epsilon-envelope bounds every geometric change.
-/// Throws mr::UsageError on bad options or an inconsistent mesh, and
-/// mr::RunError when `kept` has no tet or the surface cannot be made
-/// manifold.
-RepairResult repair_surface_from_tets(const TetMesh& kept, const TriangleSoup& input,
-                                      const RepairOptions& options);
+/// Repairs the boundary of the solid made of the tets of `mesh` flagged in
+/// `inside` (one flag per tet; empty: every tet) and returns it as a
+/// surface. Tets are positively oriented and form an embedding, e.g. the
+/// background mesh after insertion, with the winding-number filter's
+/// decisions as flags; the rejected tets are there so that the manifold fix
+/// can add some of them. `input` is the original input soup whose
+/// epsilon-envelope bounds every geometric change. Throws mr::UsageError on
+/// bad options, flags or an inconsistent mesh, and mr::RunError when no tet
+/// is inside or the surface cannot be made manifold.
+RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::uint8_t> inside,
+                                      const TriangleSoup& input, const RepairOptions& options);
 
 }  // namespace mr::repair

@@ -18,6 +18,9 @@ struct PipelineOptions {
   /// the box and labels each with its region (tets connected without
   /// crossing the tracked surface), for multi-material inputs.
   bool filter = true;
+  /// With filter: return the tets it rejected too, labelled 0 (kept tets 1),
+  /// for meshrepair's manifold fix, which may add some of them.
+  bool keep_rejected = false;
   /// Run the mesh-improvement stage. meshrepair's fast path turns it off:
   /// it needs a valid embedding, not well-shaped tets.
   bool improve = true;
@@ -25,8 +28,9 @@ struct PipelineOptions {
 
 struct PipelineResult {
   /// Doubles only, every tet positively oriented on these doubles (checked
-  /// exactly before returning). With filter: label 1 on every tet; without:
-  /// the region label of each tet.
+  /// exactly before returning). With filter: label 1 on every kept tet (and
+  /// 0 on rejected ones, with keep_rejected); without: the region label of
+  /// each tet.
   TetMesh mesh;
   /// The tracked surface: the mesh faces the input triangles were inserted
   /// as (after improvement), restricted to the kept tets when filtering.
