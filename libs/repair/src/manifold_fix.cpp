@@ -188,8 +188,7 @@ ManifoldFixStats make_boundary_manifold(TetMesh& mesh, std::span<const std::uint
     stats.vertex_copies += copies;
     if (copies > 0) continue;
     if (EditRound(mesh, states, neighbours, envelope, stats).run(defects) == 0)
-      throw RunError("repair: cannot make the boundary manifold: every edit left would remove the last tet or "
-                     "change a tet twice: " + describe(defects));
+      throw RunError("repair: cannot make the boundary manifold without removing every tet: " + describe(defects));
   }
 }
 

@@ -36,10 +36,10 @@ SolidEdit evaluate(const TetMesh& mesh, const FaceNeighbours& neighbours, std::s
   return edit;
 }
 
+// All in the solid (a removal), or all rejected (an addition).
 bool may_change(std::span<const TetState> states, const std::vector<Index>& tets) {
-  const TetState first = states[tets.front()];
-  if (first != TetState::kept && first != TetState::rejected) return false;
-  return std::all_of(tets.begin(), tets.end(), [&](Index t) { return states[t] == first; });
+  if (std::all_of(tets.begin(), tets.end(), [&](Index t) { return in_solid(states[t]); })) return true;
+  return std::all_of(tets.begin(), tets.end(), [&](Index t) { return states[t] == TetState::rejected; });
 }
 
 }  // namespace
@@ -51,7 +51,7 @@ std::optional<SolidEdit> choose_edit(const TetMesh& mesh, const FaceNeighbours& 
   std::optional<SolidEdit> best;
   for (const std::vector<Index>& tets : candidates) {
     if (tets.empty() || !may_change(states, tets)) continue;
-    if (states[tets.front()] == TetState::kept && tets.size() >= solid_tets) continue;
+    if (in_solid(states[tets.front()]) && tets.size() >= solid_tets) continue;
     SolidEdit edit = evaluate(mesh, neighbours, states, tets, envelope);
     if (!best || std::tie(edit.faces_outside, edit.volume) < std::tie(best->faces_outside, best->volume))
       best = std::move(edit);

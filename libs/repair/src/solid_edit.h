@@ -18,12 +18,12 @@ struct SolidEdit {
   double volume = 0.0;
 };
 
-/// Among the edits of `candidates` (each a set of tets, all kept or all
-/// rejected), the one whose new boundary faces leave the envelope least
+/// Among the edits of `candidates` (each a set of tets, all in the solid or
+/// all rejected), the one whose new boundary faces leave the envelope least
 /// often (all count as inside when `envelope` is null), then the one that
-/// changes the least volume; the first on ties. Candidates that hold a tet
-/// whose state may no longer change, or that would remove every tet of the
-/// solid, are skipped; nullopt when none is left.
+/// changes the least volume; the first on ties. Candidates that hold a
+/// locked-out tet, or that would remove every tet of the solid, are
+/// skipped; nullopt when none is left.
 std::optional<SolidEdit> choose_edit(const TetMesh& mesh, const FaceNeighbours& neighbours,
                                      std::span<const TetState> states, std::size_t solid_tets,
                                      const std::vector<std::vector<Index>>& candidates,

@@ -48,11 +48,11 @@ class FaceNeighbours {
 };
 
 /// What a tet is to the solid, and what the manifold fix may still do with
-/// it. Each tet changes at most once (kept -> removed, rejected -> added), so
-/// the fix cannot undo its own edits and go round in circles.
+/// it. States only move forward (rejected -> added -> locked_out, kept ->
+/// locked_out): no tet is added twice, so the fix cannot go round in circles.
 enum class TetState : std::uint8_t {
   kept,        ///< in the solid; may be removed
-  added,       ///< was rejected, added by the fix; stays
+  added,       ///< was rejected, added by the fix; may be removed
   rejected,    ///< outside the solid; may be added
   locked_out,  ///< outside and stays there (removed, or next to a split vertex)
 };

@@ -54,7 +54,9 @@ std::vector<Index> Workspace::star(Index v) {
   return tets_around_vertex(mesh, v, seed);
 }
 
-std::vector<Index> Workspace::edge_tets(Index a, Index b) {
+std::vector<Index> Workspace::edge_tets(Index a, Index b, Index hint) {
+  if (hint != kNoTet && mesh.tet_alive(hint) && mesh.corner_of(hint, a) >= 0 && mesh.corner_of(hint, b) >= 0)
+    return tets_around_edge(mesh, a, b, hint);
   std::vector<Index> tets = star(a);
   std::erase_if(tets, [&](Index t) { return mesh.corner_of(t, b) < 0; });
   return tets;

@@ -44,7 +44,9 @@ class Workspace {
   /// The live tets around v, sorted. Empty for a vertex no tet uses.
   std::vector<Index> star(Index v);
   /// The tets containing edge (a, b), sorted; empty if it is not an edge.
-  std::vector<Index> edge_tets(Index a, Index b);
+  /// `hint`, when it is a live tet with both corners, saves the walk around
+  /// a's whole star.
+  std::vector<Index> edge_tets(Index a, Index b, Index hint = kNoTet);
   /// Target length of edge (a, b) under the local sizing.
   double target(Index a, Index b) const;
   /// Records that `tets` are live and use their corners (after an edit).
@@ -106,8 +108,9 @@ enum class CollapseGoal { quality, rounding };
 /// Collapses u onto v if every check passes.
 bool try_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal);
 
-/// Edge removal (3-2 or 4-4) of edge (a, b); returns 32, 44 or 0.
-int try_edge_swap(Workspace& ws, Index a, Index b);
+/// Edge removal (3-2 or 4-4) of edge (a, b) of tet `hint`; returns 32, 44
+/// or 0.
+int try_edge_swap(Workspace& ws, Index a, Index b, Index hint);
 /// Face removal (2-3) of face `f` of tet `t`.
 bool try_face_swap(Workspace& ws, Index t, int f);
 

@@ -137,7 +137,7 @@ SwapCounts swap_pass(Workspace& ws) {
     const Tet c = corners[i];
     for (int x = 0; x < 4 && !swapped; ++x) {
       for (int y = x + 1; y < 4 && !swapped; ++y) {
-        const int kind = try_edge_swap(ws, c[x], c[y]);
+        const int kind = try_edge_swap(ws, c[x], c[y], t);
         counts.s32 += kind == 32;
         counts.s44 += kind == 44;
         swapped = kind != 0;

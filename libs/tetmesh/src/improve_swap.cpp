@@ -76,9 +76,9 @@ std::vector<Tet> four_four(const Mesh& mesh, const EdgeRing& r, int k, Index a, 
 
 }  // namespace
 
-int try_edge_swap(Workspace& ws, Index a, Index b) {
+int try_edge_swap(Workspace& ws, Index a, Index b, Index hint) {
   Mesh& mesh = ws.mesh;
-  const std::vector<Index> tets = ws.edge_tets(a, b);
+  const std::vector<Index> tets = ws.edge_tets(a, b, hint);
   if (tets.size() != 3 && tets.size() != 4) return 0;
   if (edge_has_tracked_face(mesh, tets, a, b)) return 0;
   const EdgeRing ring = edge_ring(mesh, tets, a, b);

@@ -27,10 +27,19 @@ std::vector<Index> tets_around_vertex(const Mesh& mesh, Index v, Index seed) {
     throw UsageError("tets_around_vertex: seed tet " + std::to_string(seed) +
                      " is not a live tet with vertex " + std::to_string(v));
   }
-  // A linear search of the star was quadratic: cut points on lines where
-  // many triangles cross have thousands of tets around them.
-  std::vector<Index> star{seed};
-  std::unordered_set<Index> seen{seed};
+  // Most stars have a few dozen tets, where a linear search of the star is
+  // fastest; cut points on lines where many triangles cross have thousands,
+  // where it was quadratic, so a hash set takes over past a size.
+  constexpr std::size_t kLinearSearchLimit = 64;
+  std::vector<Index> star;
+  star.reserve(kLinearSearchLimit);
+  star.push_back(seed);
+  std::unordered_set<Index> seen;
+  auto is_new = [&](Index u) {
+    if (star.size() < kLinearSearchLimit) return std::find(star.begin(), star.end(), u) == star.end();
+    if (seen.empty()) seen.insert(star.begin(), star.end());
+    return seen.insert(u).second;
+  };
   for (std::size_t i = 0; i < star.size(); ++i) {
     const Index t = star[i];
     const int opposite = mesh.corner_of(t, v);
@@ -38,11 +47,33 @@ std::vector<Index> tets_around_vertex(const Mesh& mesh, Index v, Index seed) {
       const Index u = mesh.neighbour(t, f);
       // Faces other than the one opposite v contain v: their neighbour is in the star.
       if (f == opposite || u == kNoTet) continue;
-      if (seen.insert(u).second) star.push_back(u);
+      if (is_new(u)) star.push_back(u);
     }
   }
   std::sort(star.begin(), star.end());
   return star;
+}
+
+std::vector<Index> tets_around_edge(const Mesh& mesh, Index a, Index b, Index seed) {
+  if (!mesh.tet_alive(seed) || mesh.corner_of(seed, a) < 0 || mesh.corner_of(seed, b) < 0) {
+    throw UsageError("tets_around_edge: seed tet " + std::to_string(seed) + " is not a live tet with edge " +
+                     std::to_string(a) + "-" + std::to_string(b));
+  }
+  // The tets around an edge are a ring (a fan at the box) of a few: a
+  // linear search is enough.
+  std::vector<Index> ring{seed};
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Index t = ring[i];
+    for (int f = 0; f < 4; ++f) {
+      // Face f, opposite corner f, contains the edge unless that corner is a or b.
+      const Index corner = mesh.tet(t)[f];
+      const Index u = mesh.neighbour(t, f);
+      if (corner == a || corner == b || u == kNoTet) continue;
+      if (std::find(ring.begin(), ring.end(), u) == ring.end()) ring.push_back(u);
+    }
+  }
+  std::sort(ring.begin(), ring.end());
+  return ring;
 }
 
 }  // namespace mr::tetmesh

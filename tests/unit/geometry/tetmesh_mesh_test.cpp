@@ -5,6 +5,8 @@
 
 #include <mr/core/errors.h>
 #include <mr/kernel/rounding.h>
+#include <mr/spatial/aabb_tree.h>
+#include <mr/tetmesh/background_mesh.h>
 #include <mr/tetmesh/convert.h>
 #include <mr/tetmesh/incidence.h>
 #include <mr/tetmesh/mesh_check.h>
@@ -209,6 +211,33 @@ TEST_CASE("tetmesh: split at a rational point, round it, compact", "[tetmesh]") 
   const TetMesh out = to_tet_mesh(mesh);
   CHECK(out.tets.size() == 8);
   CHECK(maps.tet_map[star.back()] == kNoTet);
+}
+
+TEST_CASE("tetmesh: the walk around an edge finds what the vertex star does", "[tetmesh]") {
+  // A background mesh of a cube: interior edges with full rings, and edges
+  // on the box whose tets form an open fan.
+  const TriangleSoup cube = test::cube_soup();
+  const DerivedParameters derived = derive_parameters({}, cube);
+  const Mesh mesh = build_background_mesh(cube, spatial::AabbTree(cube), background_parameters(derived, 0)).mesh;
+  std::size_t edges = 0, fans = 0;
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    const Tet corners = mesh.tet(t);
+    for (int x = 0; x < 4; ++x)
+      for (int y = x + 1; y < 4; ++y) {
+        const Index a = corners[x], b = corners[y];
+        std::vector<Index> expected = tets_around_vertex(mesh, a, t);
+        std::erase_if(expected, [&](Index u) { return mesh.corner_of(u, b) < 0; });
+        const std::vector<Index> ring = tets_around_edge(mesh, a, b, t);
+        REQUIRE(ring == expected);
+        ++edges;
+        for (Index u : ring)
+          for (int f = 0; f < 4; ++f) fans += mesh.neighbour(u, f) == kNoTet && mesh.tet(u)[f] != a && mesh.tet(u)[f] != b;
+      }
+  }
+  CHECK(edges > 1000);
+  CHECK(fans > 0);  // some edges lie on the box
+  CHECK_THROWS_AS(tets_around_edge(mesh, mesh.tet(0)[0], Index(mesh.vertex_slots() + 5), 0), UsageError);
 }
 
 TEST_CASE("tetmesh: bad input to the mesh is refused", "[tetmesh]") {

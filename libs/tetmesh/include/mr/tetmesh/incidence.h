@@ -28,4 +28,9 @@ class VertexTets {
 /// Sorted by tet index. Cost: proportional to the size of the star.
 std::vector<Index> tets_around_vertex(const Mesh& mesh, Index v, Index seed);
 
+/// The live tets around edge (a, b), found by walking the faces that contain
+/// it from `seed`, a live tet with both as corners (mr::UsageError
+/// otherwise). Sorted by tet index. Cost: proportional to the edge's valence.
+std::vector<Index> tets_around_edge(const Mesh& mesh, Index a, Index b, Index seed);
+
 }  // namespace mr::tetmesh
