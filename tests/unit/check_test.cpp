@@ -119,4 +119,6 @@ TEST_CASE("sampled distance between surfaces", "[check]") {
   const check::DistanceReport report = check::one_sided_distance(bigger, cube);
   CHECK(report.max == Approx(std::sqrt(3 * 0.01)).epsilon(1e-9));  // the corners
   CHECK(report.samples > 1000);
+  // The farthest sample is reported: one of the bigger cube's corners.
+  for (int k = 0; k < 3; ++k) CHECK(std::abs(report.farthest[k] - 0.5) == Approx(0.6));
 }

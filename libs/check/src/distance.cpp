@@ -76,9 +76,12 @@ DistanceReport one_sided_distance(const TriangleSoup& from, const TriangleSoup& 
   });
   report.samples = samples.size();
   double sum = 0;
-  for (double d : distances) {
-    report.max = std::max(report.max, d);
-    sum += d;
+  for (std::size_t i = 0; i < distances.size(); ++i) {
+    if (distances[i] > report.max) {
+      report.max = distances[i];
+      report.farthest = samples[i];
+    }
+    sum += distances[i];
   }
   report.mean = sum / double(samples.size());
   return report;
