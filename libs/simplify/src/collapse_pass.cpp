@@ -111,7 +111,9 @@ std::size_t collapse_edges(MeshState& state, std::size_t target_faces) {
     });
     for (std::size_t i = 0; i < batch.size() && state.face_count() > target_faces; ++i) {
       const TriMesh::HalfedgeHandle h(static_cast<int>(batch[i].halfedge));
-      if (!passed[i] || !mesh.is_collapse_ok(h) || !state.collapse_keeps_faces_apart(h)) continue;
+      if (!passed[i] || !mesh.is_collapse_ok(h) || !state.collapse_keeps_faces_apart(h) ||
+          !state.collapse_keeps_volume(h))
+        continue;
       const auto v0 = mesh.from_vertex_handle(h);
       const auto v1 = mesh.to_vertex_handle(h);
       support.clear();

@@ -23,7 +23,7 @@ std::size_t flip_sweep(MeshState& state) {
     const auto f0 = mesh.face_handle(mesh.halfedge_handle(e, 0));
     const auto f1 = mesh.face_handle(mesh.halfedge_handle(e, 1));
     if (face_changed[f0.idx()] || face_changed[f1.idx()]) continue;
-    if (!mesh.is_flip_ok(e) || !state.flip_keeps_faces_apart(e)) continue;
+    if (!mesh.is_flip_ok(e) || !state.flip_keeps_faces_apart(e) || !state.flip_keeps_volume(e)) continue;
     state.flip(e);
     face_changed[f0.idx()] = face_changed[f1.idx()] = 1;
     ++flips;

@@ -19,6 +19,7 @@ MeshState::MeshState(const TriangleSoup& input, const TriangleSoup& welded,
   build_boundary_envelope();
   build_grid();
   build_quadrics();
+  build_component_volumes();
   carried_by_.resize(mesh_.n_faces());
 }
 
@@ -220,6 +221,7 @@ double MeshState::collapse_cost(TriMesh::HalfedgeHandle h) const {
 void MeshState::collapse(TriMesh::HalfedgeHandle h) {
   const auto v0 = mesh_.from_vertex_handle(h);
   const auto v1 = mesh_.to_vertex_handle(h);
+  volume6_[component_[v1.idx()]] += collapse_volume_change(h);
   const TriMesh::FaceHandle gone[2] = {mesh_.face_handle(h), mesh_.opposite_face_handle(h)};
   for (const TriMesh::FaceHandle f : gone) {
     if (!f.is_valid()) continue;
@@ -244,6 +246,7 @@ void MeshState::collapse(TriMesh::HalfedgeHandle h) {
 void MeshState::flip(TriMesh::EdgeHandle e) {
   const std::vector<TriMesh::FaceHandle> pair{mesh_.face_handle(mesh_.halfedge_handle(e, 0)),
                                               mesh_.face_handle(mesh_.halfedge_handle(e, 1))};
+  volume6_[component_[mesh_.from_vertex_handle(mesh_.halfedge_handle(e, 0)).idx()]] += flip_volume_change(e);
   const std::vector<std::uint32_t> moving = take_carried_points(pair);
   mesh_.flip(e);
   for (auto f : pair) insert_into_grid(f);

@@ -61,6 +61,14 @@ class MeshState {
   bool flip_keeps_faces_apart(TriMesh::EdgeHandle e) const;
   void flip(TriMesh::EdgeHandle e);
 
+  /// The collapse (flip) keeps the sign of the volume of its component when
+  /// that component is closed. Every face may turn a little and the surface
+  /// stay free of crossings while a part thinner than epsilon ends up inside
+  /// out (a 4-face strut of negative volume): no per-face test sees that.
+  /// Asked when the operation is made, after those before it.
+  bool collapse_keeps_volume(TriMesh::HalfedgeHandle h) const;
+  bool flip_keeps_volume(TriMesh::EdgeHandle e) const;
+
   /// Vertices removed by collapses, each still within epsilon of the surface.
   std::size_t carried_points() const { return carried_positions_.size(); }
 
@@ -115,6 +123,12 @@ class MeshState {
   void carry_by_nearest(const std::vector<std::uint32_t>& points, const std::vector<TriMesh::FaceHandle>& faces);
   /// replaced(face index) tells faces the operation removes or rewrites;
   /// old_faces are their corners.
+  // Signed volumes of the closed components (component_volumes.cpp).
+  void build_component_volumes();
+  double collapse_volume_change(TriMesh::HalfedgeHandle h) const;
+  double flip_volume_change(TriMesh::EdgeHandle e) const;
+  bool volume_keeps_sign(TriMesh::VertexHandle v, double change) const;
+
   template <class Replaced>
   bool faces_apart(const std::vector<NewFace>& faces, const std::vector<Corners>& old_faces,
                    Replaced&& replaced) const;
@@ -134,6 +148,9 @@ class MeshState {
   std::vector<Vec3d> carried_positions_;                 // removed vertices
   std::vector<std::vector<std::uint32_t>> carried_by_;   // per mesh face: indices into carried_positions_
   std::size_t live_faces_ = 0;
+  std::vector<std::uint32_t> component_;   // per vertex; collapses and flips never join or split components
+  std::vector<double> volume6_;            // per component: six times its signed volume
+  std::vector<std::uint8_t> closed_;       // per component: no boundary edge
 };
 
 }  // namespace mr::simplify

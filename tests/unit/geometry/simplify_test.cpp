@@ -254,6 +254,43 @@ TEST_CASE("a part thinner than epsilon does not erode", "[simplify]") {
   CHECK(hi.y() - lo.y() >= 2.0 - 2.0 * result.epsilon);
 }
 
+TEST_CASE("thin closed parts are never turned inside out", "[simplify]") {
+  // Flat and needle-like parts thinner than epsilon: each collapse may turn
+  // faces only a little and create no crossing, yet a sequence of them could
+  // end in a closed part of negative volume (seen on a strut in meshrepair's
+  // clean-up). The volume of each closed part keeps its sign.
+  for (const Vec3d& scale : {Vec3d(1, 1, 1e-4), Vec3d(1, 1, 1e-7), Vec3d(1, 1e-4, 1e-4), Vec3d(1, 3e-4, 1e-6)}) {
+    for (const bool inside_out : {false, true}) {
+      CAPTURE(scale.transpose(), inside_out);
+      TriangleSoup input = icosphere(3);
+      for (Vec3d& p : input.positions) p = p.cwiseProduct(scale);
+      if (inside_out)
+        for (mr::Triangle& t : input.triangles) std::swap(t[1], t[2]);
+      const auto result = simplify_in_envelope(input, {});
+      const mr::check::SurfaceReport report = mr::check::check_surface(result.soup);
+      CAPTURE(result.faces_after, report.volume);
+      CHECK(report.closed());
+      CHECK(report.self_intersecting_pairs == 0);
+      CHECK((inside_out ? report.volume < 0.0 : report.volume > 0.0));
+    }
+  }
+}
+
+TEST_CASE("a needle thinner than epsilon keeps positive volume", "[simplify]") {
+  // meshrepair's peeled surface of a CAD strut (tests/data/README.md):
+  // without the volume check it simplified to a 4-face tet of volume -1494.
+  const TriangleSoup input = mr::io::read_surface(mr::io::make_default_registry(),
+                                                  std::string(MR_TEST_DATA_DIR) + "/thin_strut_peeled.obj");
+  const mr::check::SurfaceReport before = mr::check::check_surface(input);
+  REQUIRE(before.watertight());
+  const auto result = simplify_in_envelope(input, {});
+  const mr::check::SurfaceReport after = mr::check::check_surface(result.soup);
+  CAPTURE(result.faces_after, before.volume, after.volume);
+  CHECK(after.watertight());
+  CHECK(after.volume > 0.0);
+  CHECK(mr::check::one_sided_distance(result.soup, input).max <= result.epsilon);
+}
+
 TEST_CASE("simplification stops at the target face count", "[simplify]") {
   SimplifyOptions options;
   options.target_faces = 5000;
