@@ -13,8 +13,17 @@
 namespace mr::tools {
 namespace {
 
+// The fast path needs a valid embedding, not well-shaped interior tets, so
+// its background mesh has no voxel lattice: lattice points make every input
+// triangle cross many more tets (docs/ARCHITECTURE.md, "Repair").
+tetmesh::TetrahedralizeOptions repair_defaults() {
+  tetmesh::TetrahedralizeOptions options;
+  options.lattice_spacing_rel = 0.0;
+  return options;
+}
+
 struct ToolOptions {
-  tetmesh::TetrahedralizeOptions tetrahedralize;
+  tetmesh::TetrahedralizeOptions tetrahedralize = repair_defaults();
   bool cleanup = true;
   std::string stats_path;
   bool quiet = false;
@@ -40,6 +49,9 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        [&](const std::string& v) { t.epsilon_rel = parse_double("--epsilon", v); }},
       {"--epsilon-abs", "", "EPS", "absolute envelope radius (overrides --epsilon)",
        [&](const std::string& v) { t.epsilon_abs = parse_double("--epsilon-abs", v); }},
+      {"--lattice", "", "H",
+       "voxel-stuffing lattice spacing of the background mesh relative to the bbox diagonal (default 0: none)",
+       [&](const std::string& v) { t.lattice_spacing_rel = cli::parse_double("--lattice", v); }},
       {"--skip-simplify", "", "", "insert the input as it is, without simplifying it inside the envelope first",
        [&](const std::string&) { t.skip_simplify = true; }},
       {"--no-cleanup", "", "", "keep the peeled surface as it is (no collapses or flips)",
