@@ -164,13 +164,13 @@ std::vector<std::array<Index, 2>> unbalanced_edges(const TriangleSoup& surface) 
 
 bool is_cycle(const TriangleSoup& surface) { return unbalanced_edges(surface).empty(); }
 
-bool edges_near(const TriangleSoup& surface, std::span<const std::array<Index, 2>> edges,
-                const TriangleSoup& triangles, double radius) {
-  if (triangles.triangles.empty()) return edges.empty();
+std::size_t edges_away_from(const TriangleSoup& surface, std::span<const std::array<Index, 2>> edges,
+                            const TriangleSoup& triangles, double radius) {
+  if (triangles.triangles.empty()) return edges.size();
   const spatial::AabbTree tree(triangles);
-  return std::all_of(edges.begin(), edges.end(), [&](const std::array<Index, 2>& e) {
-    return tree.any_within(0.5 * (surface.positions[e[0]] + surface.positions[e[1]]), radius);
-  });
+  return static_cast<std::size_t>(std::count_if(edges.begin(), edges.end(), [&](const std::array<Index, 2>& e) {
+    return !tree.any_within(0.5 * (surface.positions[e[0]] + surface.positions[e[1]]), radius);
+  }));
 }
 
 std::size_t count_non_positive_tets(const TetMesh& mesh) {

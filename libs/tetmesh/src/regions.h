@@ -39,10 +39,10 @@ bool is_cycle(const TriangleSoup& surface);
 /// The edges (vertex pairs, lower index first) of `surface` not run along
 /// as often one way as the other: empty for a cycle.
 std::vector<std::array<Index, 2>> unbalanced_edges(const TriangleSoup& surface);
-/// Whether the midpoint of every edge of `surface` in `edges` is within
-/// `radius` of a triangle of `triangles`.
-bool edges_near(const TriangleSoup& surface, std::span<const std::array<Index, 2>> edges,
-                const TriangleSoup& triangles, double radius);
+/// How many edges of `surface` in `edges` have their midpoint farther than
+/// `radius` from every triangle of `triangles` (all of them when there is none).
+std::size_t edges_away_from(const TriangleSoup& surface, std::span<const std::array<Index, 2>> edges,
+                            const TriangleSoup& triangles, double radius);
 
 /// The number of tets of `mesh` that are not strictly positively oriented
 /// on their double coordinates (exact orient3d; parallel).

@@ -252,9 +252,12 @@ TetClassification classify_for_filter(const Mesh& mesh, const TriangleSoup& surf
   // leak into each other (thingi10k/1514499 loses tracked faces somewhere
   // with none left out: one region took in 282k tets whose own winding
   // number said inside).
-  const bool closed_input = detail::is_cycle(weld_identical_vertices(surface)) &&
-                            detail::edges_near(tracked, open_edges, holes, hole_reach);
+  const bool input_is_cycle = detail::is_cycle(weld_identical_vertices(surface));
+  const std::size_t away = detail::edges_away_from(tracked, open_edges, holes, hole_reach);
+  const bool closed_input = input_is_cycle && away == 0;
   count(timer, "closed_input", closed_input ? 1 : 0);
+  count(timer, "open_edges", open_edges.size());
+  count(timer, "open_edges_away_from_holes", away);
   if (closed_input) {
     const std::vector<char> barrier = tets_near(mesh, holes);
     count(timer, "barrier_tets", static_cast<std::size_t>(std::count(barrier.begin(), barrier.end(), 1)));
