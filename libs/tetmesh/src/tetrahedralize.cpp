@@ -256,6 +256,7 @@ TetClassification classify_for_filter(const Mesh& mesh, const TriangleSoup& surf
   const std::size_t away = detail::edges_away_from(tracked, open_edges, holes, hole_reach);
   const bool closed_input = input_is_cycle && away == 0;
   count(timer, "closed_input", closed_input ? 1 : 0);
+  count(timer, "input_is_cycle", input_is_cycle ? 1 : 0);
   count(timer, "open_edges", open_edges.size());
   count(timer, "open_edges_away_from_holes", away);
   if (closed_input) {
