@@ -95,7 +95,7 @@ class EditRound {
     const auto edit = choose_edit(mesh_, neighbours_, states_, solid_tets_, candidates, envelope_);
     if (!edit) return 0;
     for (Index t : edit->tets) {
-      states_[t] = edit->add ? TetState::added : TetState::locked_out;
+      states_[t] = edit->add ? TetState::solid : TetState::locked_out;
       changed_[t] = 1;
     }
     if (edit->add) {
@@ -123,7 +123,7 @@ std::vector<TetState> initial_states(std::span<const std::uint8_t> inside, std::
   if (!inside.empty() && inside.size() != tets)
     throw UsageError("manifold fix: " + std::to_string(inside.size()) + " inside flags for " + std::to_string(tets) +
                      " tets");
-  std::vector<TetState> states(tets, TetState::kept);
+  std::vector<TetState> states(tets, TetState::solid);
   for (std::size_t t = 0; t < inside.size(); ++t)
     if (inside[t] == 0) states[t] = TetState::rejected;
   return states;

@@ -48,16 +48,15 @@ class FaceNeighbours {
 };
 
 /// What a tet is to the solid, and what the manifold fix may still do with
-/// it. States only move forward (rejected -> added -> locked_out, kept ->
-/// locked_out): no tet is added twice, so the fix cannot go round in circles.
+/// it. States only move forward (rejected -> solid -> locked_out): no tet is
+/// added twice, so the fix cannot go round in circles.
 enum class TetState : std::uint8_t {
-  kept,        ///< in the solid; may be removed
-  added,       ///< was rejected, added by the fix; may be removed
+  solid,       ///< in the solid (kept by the filter or added by the fix); may be removed
   rejected,    ///< outside the solid; may be added
   locked_out,  ///< outside and stays there (removed, or next to a split vertex)
 };
 
-inline bool in_solid(TetState s) { return s == TetState::kept || s == TetState::added; }
+inline bool in_solid(TetState s) { return s == TetState::solid; }
 
 /// Face `face` of tet `tet`.
 struct FaceRef {

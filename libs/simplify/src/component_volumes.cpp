@@ -64,7 +64,9 @@ double MeshState::flip_volume_change(TriMesh::EdgeHandle e) const {
 bool MeshState::volume_keeps_sign(TriMesh::VertexHandle v, double change) const {
   const std::uint32_t c = component_[v.idx()];
   const double before = volume6_[c];
-  return !closed_[c] || (before > 0.0 ? before + change > 0.0 : before < 0.0 ? before + change < 0.0 : true);
+  if (!closed_[c] || before == 0.0) return true;
+  const double after = before + change;
+  return before > 0.0 ? after > 0.0 : after < 0.0;
 }
 
 bool MeshState::collapse_keeps_volume(TriMesh::HalfedgeHandle h) const {

@@ -121,14 +121,14 @@ class MeshState {
   bool flip_keeps_carried_points(TriMesh::EdgeHandle e, const std::vector<NewFace>& faces) const;
   std::vector<std::uint32_t> take_carried_points(const std::vector<TriMesh::FaceHandle>& faces);
   void carry_by_nearest(const std::vector<std::uint32_t>& points, const std::vector<TriMesh::FaceHandle>& faces);
-  /// replaced(face index) tells faces the operation removes or rewrites;
-  /// old_faces are their corners.
   // Signed volumes of the closed components (component_volumes.cpp).
   void build_component_volumes();
   double collapse_volume_change(TriMesh::HalfedgeHandle h) const;
   double flip_volume_change(TriMesh::EdgeHandle e) const;
   bool volume_keeps_sign(TriMesh::VertexHandle v, double change) const;
 
+  /// replaced(face index) tells faces the operation removes or rewrites;
+  /// old_faces are their corners.
   template <class Replaced>
   bool faces_apart(const std::vector<NewFace>& faces, const std::vector<Corners>& old_faces,
                    Replaced&& replaced) const;

@@ -314,16 +314,14 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
   }
   {
     StageTimer timer(result.stats, "output", logger);
-    if (options.filter && options.keep_rejected) {
-      result.mesh = to_tet_mesh(mesh);
-      for (Index t = 0; t < mesh.tet_slots(); ++t) {
-        if (mesh.tet_alive(t)) result.mesh.tet_labels.push_back(keep[t] != 0 ? 1 : 0);
-      }
-    } else if (options.filter) {
+    if (options.filter && !options.keep_rejected) {
       result.mesh = extract_tets(mesh, keep);
       result.mesh.tet_labels.assign(result.mesh.tets.size(), 1);
     } else {
-      const std::vector<std::int32_t> labels = detail::region_labels(mesh);
+      // Every tet, labelled 1 / 0 by the filter or by its region.
+      std::vector<std::int32_t> labels;
+      if (options.filter) labels.assign(keep.begin(), keep.end());
+      else labels = detail::region_labels(mesh);
       result.mesh = to_tet_mesh(mesh);
       for (Index t = 0; t < mesh.tet_slots(); ++t) {
         if (mesh.tet_alive(t)) result.mesh.tet_labels.push_back(labels[t]);
