@@ -41,6 +41,8 @@ struct Case {
   /// Allowed |volume - expected|: epsilon times the surface area for a
   /// closed solid; a hole's fill follows the winding number, not a plane.
   double tolerance;
+  /// Insert the input as it is: simplification would remove the defect.
+  bool skip_simplify = false;
 };
 
 std::vector<Case> broken_inputs() {
@@ -60,6 +62,14 @@ std::vector<Case> broken_inputs() {
   TriangleSoup cavity = test::cube_soup(1.0, 2.0);
   for (Triangle& t : cavity.triangles) std::swap(t[1], t[2]);  // inward: a deliberate cavity
   hollow.append(cavity);
+  // The bottom face (z = 0) as a fan whose first triangle folds back over
+  // its neighbour: (0, 3, m) runs against the face, the chain is still the
+  // square. Coplanar merging must not take the fold into a polygon.
+  TriangleSoup folded_fan = test::cube_soup();
+  const Index m = static_cast<Index>(folded_fan.positions.size());
+  folded_fan.positions.push_back({0.45, 0.55, 0.0});  // inside triangle (0, 2, 3), off the diagonal
+  folded_fan.triangles.erase(folded_fan.triangles.begin(), folded_fan.triangles.begin() + 2);
+  folded_fan.triangles.insert(folded_fan.triangles.begin(), {{0, 2, 3}, {0, 3, m}, {3, 1, m}, {1, 0, m}});
   const double area_eps = 6 * 1e-3 * std::sqrt(3.0) * 2;  // two unit cubes' area times epsilon
   return {
       {"cube", test::cube_soup(), 1.0, area_eps},
@@ -72,6 +82,7 @@ std::vector<Case> broken_inputs() {
       {"duplicated faces", duplicated, 1.0, area_eps},
       {"sliver triangle", sliver, 1.0, area_eps},
       {"cube with a flipped face", flipped_face, 1.0, area_eps},
+      {"cube with a folded fan", folded_fan, 1.0, area_eps, true},
       {"hollow cube (inward inner shell)", hollow, 26.0, 3e-3 * std::sqrt(3.0) * 60},
   };
 }
@@ -90,6 +101,7 @@ TEST_CASE("tetrahedralize: broken inputs give valid meshes of the expected volum
     SECTION(c.name) {
       tetmesh::PipelineOptions options;
       options.improve = false;  // the improvement stage has its own tests; one run below uses it
+      options.tetrahedralize.skip_simplify = c.skip_simplify;
       const tetmesh::PipelineResult result = tetmesh::tetrahedralize(c.soup, options);
       const check::TetReport report = check::check_tets(result.mesh);
       CHECK(report.valid());

@@ -72,7 +72,8 @@ class PolygonGrower {
   }
 
   // Adds the triangle across polygon edge e (corners e, e+1) if it is free,
-  // coplanar, oriented alike and keeps the polygon strictly convex.
+  // coplanar, oriented alike (by its indices and by its corners) and keeps
+  // the polygon strictly convex.
   bool grow_across(ConvexPolygon& polygon, std::size_t e) {
     std::vector<Index>& corners = polygon.corners;
     const std::size_t n = corners.size();
@@ -90,6 +91,10 @@ class PolygonGrower {
     }
     if (d == kNoVertex || std::find(corners.begin(), corners.end(), d) != corners.end()) return false;
     if (orient3d(at(plane_[0]), at(plane_[1]), at(plane_[2]), at(d)) != 0) return false;
+    // d must lie outside edge (u, v): a triangle folded back over the
+    // polygon is oriented alike only by its indices, and its chain
+    // subtracts where the polygon's adds (openscad-nonmanifold-crash).
+    if (!strictly_convex(u, d, v)) return false;
     const Index before = corners[(e + n - 1) % n];
     const Index after = corners[(e + 2) % n];
     if (!strictly_convex(before, u, d) || !strictly_convex(d, v, after)) return false;

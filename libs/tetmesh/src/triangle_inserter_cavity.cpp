@@ -137,6 +137,10 @@ void TriangleInserter::rebuild_cavity() {
 // its time multiplying them). Points past InsertionOptions::max_exact_bits are rounded at once
 // when no tet around them inverts; the others wait for the rounding stage
 // (rounding every point at once left knots, see rounding_stage.h).
+// Points on tracked faces wait too: rounded, they take those faces off
+// their plane, and a later triangle in that plane no longer finds them on
+// it, so the faces it overlaps miss its mark and the tracked chain opens
+// (openscad-nonmanifold-crash: 30 edges of two triangles).
 void TriangleInserter::round_oversized_points(std::span<const Index> created) {
   std::vector<Index> oversized;
   for (const Index v : new_vertices_) {
@@ -147,20 +151,23 @@ void TriangleInserter::round_oversized_points(std::span<const Index> created) {
   std::sort(oversized.begin(), oversized.end());
   // Every tet around a new point is new: the stars come from `created`.
   std::vector<std::vector<OppositeFace>> stars(oversized.size());
+  std::vector<char> on_tracked_face(oversized.size(), 0);
   for (const Index t : created) {
     const Tet& tet = mesh_.tet(t);
     for (int corner = 0; corner < 4; ++corner) {
       const auto it = std::lower_bound(oversized.begin(), oversized.end(), tet[corner]);
       if (it == oversized.end() || *it != tet[corner]) continue;
+      const auto i = static_cast<std::size_t>(it - oversized.begin());
       const auto f = opposite_face(tet, corner);
-      stars[std::size_t(it - oversized.begin())].push_back(
-          {&mesh_.position(f[0]), &mesh_.position(f[1]), &mesh_.position(f[2])});
+      stars[i].push_back({&mesh_.position(f[0]), &mesh_.position(f[1]), &mesh_.position(f[2])});
+      for (int k = 0; k < 4; ++k) {
+        if (k != corner && !mesh_.surface_ids(t, k).empty()) on_tracked_face[i] = 1;
+      }
     }
   }
   for (std::size_t i = 0; i < oversized.size(); ++i) {
-    const Index v = oversized[i];
-    const std::vector<OppositeFace>& star = stars[i];
-    if (try_round(mesh_.position(v), star)) ++counters_.eagerly_rounded;
+    if (on_tracked_face[i] != 0) continue;
+    if (try_round(mesh_.position(oversized[i]), stars[i])) ++counters_.eagerly_rounded;
   }
 }
 

@@ -8,6 +8,7 @@
 
 #include "test_support.h"
 
+#include <mr/kernel/predicates.h>
 #include <mr/tetmesh/background_mesh.h>
 #include <mr/tetmesh/insertion.h>
 #include <mr/tetmesh/mesh_check.h>
@@ -69,6 +70,23 @@ void require_exactly_embedded(const TriangleSoup& soup, const Inserted& inserted
     expected_area[marked_as[i]] +=
         triangle_area(soup.positions[f[0]], soup.positions[f[1]], soup.positions[f[2]]);
   }
+  // Until the rounding stage, a tracked face lies exactly in the plane of
+  // every triangle it is marked with (a cut point rounded early would take
+  // its faces off the plane, and later coplanar triangles would miss them).
+  std::size_t off_plane = 0;
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    for (int k = 0; k < 4; ++k) {
+      for (const std::uint32_t id : mesh.surface_ids(t, k)) {
+        const Triangle& f = soup.triangles[id];
+        for (const Index v : mesh.face_vertices(t, k)) {
+          off_plane += orient3d(HybridPoint(soup.positions[f[0]]), HybridPoint(soup.positions[f[1]]),
+                                HybridPoint(soup.positions[f[2]]), mesh.position(v)) != 0;
+        }
+      }
+    }
+  }
+  CHECK(off_plane == 0);
   for (const auto& [id, expected] : expected_area) {
     const auto it = area.find(id);
     const double got = it == area.end() ? 0.0 : it->second;
@@ -233,6 +251,16 @@ TEST_CASE("insertion: coplanar triangles merge only where the polygon stays conv
     CHECK(inserted.stats.merged > 0);
     CHECK(inserted.stats.marked_as[2] != inserted.stats.marked_as[3]);  // their union has the reflex corner
     require_exactly_embedded(fan, inserted);
+  }
+  SECTION("a triangle folded back over its neighbour stays apart") {
+    // (0, 2, 3) runs like (0, 1, 2) by its indices, but its corner 3 lies
+    // inside (0, 1, 2): the fold overlaps it with the opposite orientation.
+    TriangleSoup soup;
+    soup.positions = {{0, 0, 0.5}, {0, 1, 0.5}, {1, 1, 0.5}, {0.45, 0.55, 0.5}};
+    soup.triangles = {{0, 1, 2}, {0, 2, 3}};
+    const Inserted inserted = insert_soup(soup);
+    CHECK(inserted.stats.merged == 0);
+    require_exactly_embedded(soup, inserted);
   }
   SECTION("triangles sharing an edge in different planes stay apart") {
     TriangleSoup soup;
