@@ -160,6 +160,34 @@ TEST_CASE("a pinch whose tets are connected elsewhere is resolved", "[repair]") 
   REQUIRE(r.volume == Approx(5.0).margin(0.5));
 }
 
+TEST_CASE("a pinch between two solid layers is cut out inside the envelope", "[repair]") {
+  // A 2x2x3 block whose middle layer lacks two diagonal cells, with no
+  // rejected tets on offer: the middle vertical edge is non-manifold, and
+  // tets must go. The cells are 240 epsilon wide: removing a fan of them
+  // exposes faces far from the input (4 outside the envelope without
+  // collars). The collar of thin tets split around the edge keeps the
+  // removal within a quarter epsilon of it.
+  std::vector<Cell> cells;
+  for (int z = 0; z < 3; ++z)
+    for (int x = 0; x < 2; ++x)
+      for (int y = 0; y < 2; ++y)
+        if (z != 1 || (Cell{x, y, z} != Cell{1, 0, 1} && Cell{x, y, z} != Cell{0, 1, 1})) cells.push_back({x, y, z});
+  const TetMesh tets = grid_tets(cells);
+  const TriangleSoup input = extract_boundary(tets);
+  REQUIRE(check::check_surface(input).nonmanifold_edges == 1);  // the fixture really is pinched
+  const repair::RepairResult result = repair_tets(tets, input, false);
+  REQUIRE(result.manifold.nonmanifold_edges_found == 1);
+  REQUIRE(result.manifold.removed_tets > 0);
+  REQUIRE(result.manifold.faces_outside_envelope == 0);
+  const check::SurfaceReport r = check::check_surface(result.surface);
+  CAPTURE(r.boundary_edges, r.nonmanifold_edges, r.nonmanifold_vertices, r.self_intersecting_pairs);
+  REQUIRE(r.watertight());
+  REQUIRE(r.vertices == result.surface.positions.size());
+  const double epsilon = epsilon_of(input);
+  REQUIRE(r.volume == Approx(10.0).margin(epsilon));
+  REQUIRE(check::one_sided_distance(result.surface, input).max <= epsilon);
+}
+
 TEST_CASE("random tet subsets of a block become watertight surfaces", "[repair]") {
   const TetMesh block = fine_cube_tets(3);
   for (unsigned seed = 1; seed <= 6; ++seed) {

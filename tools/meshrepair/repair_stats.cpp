@@ -56,6 +56,7 @@ nlohmann::json output_figures(const RepairRun& run) {
 nlohmann::json repair_figures(const repair::RepairResult& r) {
   return {{"nonmanifold_edges_found", r.manifold.nonmanifold_edges_found},
           {"nonmanifold_vertices_found", r.manifold.nonmanifold_vertices_found},
+          {"collar_splits", r.manifold.collar_splits},
           {"vertex_copies", r.manifold.vertex_copies},
           {"removed_tets", r.manifold.removed_tets},
           {"added_tets", r.manifold.added_tets},

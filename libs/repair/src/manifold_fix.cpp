@@ -1,6 +1,7 @@
 #include <mr/repair/manifold_fix.h>
 
 #include "boundary_defects.h"
+#include "collar.h"
 #include "solid_edit.h"
 #include "tet_set.h"
 #include "vertex_split.h"
@@ -151,6 +152,20 @@ void keep_solid_only(TetMesh& mesh, std::span<const TetState> states) {
   mesh.positions = std::move(positions);
 }
 
+// The solid's boundary and its defects, for the tets as they are now.
+struct Examined {
+  FaceNeighbours neighbours;
+  std::vector<FaceRef> boundary;
+  BoundaryDefects defects;
+};
+
+Examined examine(const TetMesh& mesh, std::span<const TetState> states) {
+  FaceNeighbours neighbours(mesh.tets);
+  std::vector<FaceRef> boundary = boundary_faces(neighbours, states);
+  BoundaryDefects defects = find_boundary_defects(triangles_of(mesh, boundary));
+  return {std::move(neighbours), std::move(boundary), std::move(defects)};
+}
+
 std::string describe(const BoundaryDefects& defects) {
   return std::to_string(defects.nonmanifold_edges.size()) + " non-manifold edges and " +
          std::to_string(defects.nonmanifold_vertices.size()) + " non-manifold vertices remain";
@@ -169,13 +184,19 @@ ManifoldFixStats make_boundary_manifold(TetMesh& mesh, std::span<const std::uint
   std::vector<TetState> states = initial_states(inside, mesh.tets.size());
   ManifoldFixStats stats;
   for (int round = 0;; ++round) {
-    const FaceNeighbours neighbours(mesh.tets);
-    const std::vector<FaceRef> boundary = boundary_faces(neighbours, states);
-    const BoundaryDefects defects = find_boundary_defects(triangles_of(mesh, boundary));
+    Examined now = examine(mesh, states);
     if (round == 0) {
-      stats.nonmanifold_edges_found = defects.nonmanifold_edges.size();
-      stats.nonmanifold_vertices_found = defects.nonmanifold_vertices.size();
+      stats.nonmanifold_edges_found = now.defects.nonmanifold_edges.size();
+      stats.nonmanifold_vertices_found = now.defects.nonmanifold_vertices.size();
     }
+    if (options.collar_width > 0.0 && !now.defects.manifold()) {
+      const std::size_t splits = build_collars(mesh, states, defect_vertices(now.defects), options.collar_width);
+      stats.collar_splits += splits;
+      if (splits > 0) now = examine(mesh, states);  // the same defects, on more tets
+    }
+    const FaceNeighbours& neighbours = now.neighbours;
+    const std::vector<FaceRef>& boundary = now.boundary;
+    const BoundaryDefects& defects = now.defects;
     if (defects.manifold()) {
       stats.rounds = round;
       keep_solid_only(mesh, states);

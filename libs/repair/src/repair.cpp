@@ -18,6 +18,9 @@ namespace {
 // enough to stay apart when written as 32-bit floats, close enough to keep
 // the surface where it was.
 constexpr double kMoveFraction = 0.1;
+// The tets at a defect are split to lie within this fraction of epsilon of
+// it (manifold_fix.h), so fan edits there stay inside the envelope.
+constexpr double kCollarFraction = 0.25;
 
 class StageClock {
  public:
@@ -83,6 +86,7 @@ RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::
     }
     ManifoldFixOptions fix;
     fix.max_move = kMoveFraction * options.epsilon;
+    fix.collar_width = kCollarFraction * options.epsilon;
     fix.max_rounds = options.max_manifold_rounds;
     result.manifold = make_boundary_manifold(work, inside, envelope.get(), fix);
   }
