@@ -30,9 +30,10 @@ namespace mr::repair {
 struct ManifoldFixOptions {
   /// Largest distance a split copy of a vertex moves, absolute. > 0.
   double max_move = 0.0;
-  /// In every round, the tets at each defect are first split so that
-  /// those touching it lie within this distance of it (absolute; 0: no
-  /// collars): the fans the fix removes or adds then stay that close.
+  /// Before the splits and edits of a round, the tets at each defect
+  /// vertex are split so that those touching it lie within this distance
+  /// of it (absolute; 0: never): the fans the fix removes or adds there are
+  /// then that thin. Collars are built in the first 10 rounds only.
   double collar_width = 0.0;
   /// Upper bound on rounds; mr::RunError when defects remain after them.
   int max_rounds = 32;
@@ -41,7 +42,7 @@ struct ManifoldFixOptions {
 struct ManifoldFixStats {
   std::size_t nonmanifold_edges_found = 0;     ///< on the boundary before the fix
   std::size_t nonmanifold_vertices_found = 0;  ///< idem, vertices
-  std::size_t collar_splits = 0;               ///< edges split around the defects
+  std::size_t collar_splits = 0;               ///< edges split for collars around defects
   std::size_t vertex_copies = 0;               ///< split copies made and moved
   std::size_t removed_tets = 0;
   std::size_t added_tets = 0;  ///< rejected tets added to the solid
