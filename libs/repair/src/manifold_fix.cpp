@@ -65,17 +65,6 @@ std::vector<std::vector<Index>> edit_candidates(const FaceNeighbours& neighbours
   return candidates;
 }
 
-// Collars (collar.h) at every defect vertex, in each of the first rounds:
-// again at vertices that had one, because splits refused in one round (a
-// part not positive) may go through after the vertex moves of the next,
-// and collar points that become defects need their own (openscad-
-// nonmanifold-crash: 3.07 eps with one collar per vertex of the mesh, 0.81
-// with collars every round). Only in the first rounds, to bound the work:
-// collars every round kept chasing the defects edits leave at collar
-// points (trimesh/soup ran out of rounds; repair.cpp now gives open inputs
-// no collars at all).
-constexpr int kCollarRounds = 10;
-
 // Edits the solid once for each defect whose tets are all unchanged this
 // round: removes the best fan of solid tets around a non-manifold edge, or
 // one class of them around a non-manifold vertex (all of them when they
@@ -200,7 +189,15 @@ ManifoldFixStats make_boundary_manifold(TetMesh& mesh, std::span<const std::uint
       stats.nonmanifold_edges_found = now.defects.nonmanifold_edges.size();
       stats.nonmanifold_vertices_found = now.defects.nonmanifold_vertices.size();
     }
-    if (options.collar_width > 0.0 && round < kCollarRounds && !now.defects.manifold()) {
+    // Collars (collar.h) at every defect vertex, in each of the first
+    // rounds: again at vertices that had one, because splits refused in one
+    // round (a part not positive) may go through after the vertex moves of
+    // the next, and collar points that become defects need their own
+    // (openscad-nonmanifold-crash: 3.07 eps with one collar per vertex of
+    // the mesh, 0.81 with collars every round). Only in the first rounds,
+    // to bound the work: collars every round kept chasing the defects edits
+    // leave at collar points (trimesh/soup ran out of rounds).
+    if (options.collar_width > 0.0 && round < options.collar_rounds && !now.defects.manifold()) {
       const std::size_t splits = build_collars(mesh, states, defect_vertices(now.defects), options.collar_width);
       stats.collar_splits += splits;
       if (splits > 0) now = examine(mesh, states);  // the same defects, on more tets

@@ -16,7 +16,9 @@
 //     envelope, then the smallest volume. Adding matters where two parts
 //     of a solid nearly touch: removing a fan there exposes faces far from
 //     the input.
-// Rounds repeat until the boundary is manifold.
+// In the first rounds, the tets at each defect are split thin first (a
+// collar, collar_width), so the fans removed or added there stay close to
+// it. Rounds repeat until the boundary is manifold.
 
 #include <mr/core/tet_mesh.h>
 #include <mr/envelope/envelope.h>
@@ -33,8 +35,11 @@ struct ManifoldFixOptions {
   /// Before the splits and edits of a round, the tets at each defect
   /// vertex are split so that those touching it lie within this distance
   /// of it (absolute; 0: never): the fans the fix removes or adds there are
-  /// then that thin. Collars are built in the first 10 rounds only.
+  /// then that thin.
   double collar_width = 0.0;
+  /// Collars are built in this many first rounds only (manifold_fix.cpp
+  /// says why they are rebuilt, and why not for ever).
+  int collar_rounds = 10;
   /// Upper bound on rounds; mr::RunError when defects remain after them.
   int max_rounds = 32;
 };
