@@ -5,6 +5,7 @@
 #include "test_support.h"
 
 #include <mr/tetmesh/convert.h>
+#include <mr/tetmesh/mesh_check.h>
 #include <mr/tetmesh/winding_filter.h>
 
 #include <catch2/catch.hpp>
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 
 using namespace mr;
 using namespace mr::tetmesh;
@@ -154,4 +156,135 @@ TEST_CASE("winding filter: a closed input with a triangle left out is decided pe
   const TetClassification per_tet = classify_tets(mesh, input, WindingRule::absolute);
   CHECK(plugged.kept == 4 * 4 * 4 * 6);
   CHECK(plugged.keep == per_tet.keep);
+}
+
+namespace {
+
+// Two triangles of the rectangle origin + [0, 1] u + [0, 1] v, split along
+// origin -> origin + u + v (the direction of the Kuhn grid's face
+// diagonals), facing `outward`.
+void add_rectangle(TriangleSoup& soup, const Vec3d& origin, const Vec3d& u, const Vec3d& v, const Vec3d& outward) {
+  const bool flip = u.cross(v).dot(outward) < 0.0;
+  const std::array<Vec3d, 3> first{origin, origin + u, origin + u + v};
+  const std::array<Vec3d, 3> second{origin, origin + u + v, origin + v};
+  for (std::array<Vec3d, 3> corners : {first, second}) {
+    if (flip) std::swap(corners[1], corners[2]);
+    const Index base = static_cast<Index>(soup.positions.size());
+    soup.positions.insert(soup.positions.end(), corners.begin(), corners.end());
+    soup.triangles.push_back({base, base + 1, base + 2});
+  }
+}
+
+// Whether p lies in triangle i of `soup` (which lies in an axis plane): on
+// its plane and inside it, edges included.
+bool in_axis_triangle(const TriangleSoup& soup, std::size_t i, const Vec3d& p) {
+  const Vec3d a = soup.positions[soup.triangles[i][0]], b = soup.positions[soup.triangles[i][1]],
+              c = soup.positions[soup.triangles[i][2]];
+  const Vec3d n = (b - a).cross(c - a);
+  if (n.dot(p - a) != 0.0) return false;
+  const auto side = [&](const Vec3d& x, const Vec3d& y) { return n.dot((y - x).cross(p - x)) >= 0.0; };
+  return side(a, b) && side(b, c) && side(c, a);
+}
+
+double distance_to_box_surface(const Vec3d& p, const Vec3d& lo, const Vec3d& hi) {
+  const Vec3d outside = (lo - p).cwiseMax(p - hi).cwiseMax(0.0);
+  if (outside.norm() > 0.0) return outside.norm();
+  return std::min((p - lo).minCoeff(), (hi - p).minCoeff());
+}
+
+}  // namespace
+
+TEST_CASE("winding filter: barrier tets that straddle a left-out triangle are refined into the envelope",
+          "[tetmesh][filter]") {
+  // A closed box whose top (z = 0.875) lies halfway through a layer of grid
+  // cells. Its bottom and the sides up to z = 0.75 are grid faces and are
+  // marked; the top and the strips of the sides above z = 0.75 are not (as
+  // if insertion had left them out). The barrier tets around them reach
+  // z = 1, 0.125 above the top.
+  Mesh mesh = from_tet_mesh(test::kuhn_grid(kLo, kStep, kCells));
+  const Vec3d lo(0.0, 0.0, 0.0), hi(0.75, 0.75, 0.875);
+  const double wall = 0.75, strip = 0.125;
+  TriangleSoup box;
+  const Vec3d x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
+  add_rectangle(box, lo, wall * x, wall * y, -z);                       // bottom
+  add_rectangle(box, Vec3d(0, 0, 0.875), wall * x, wall * y, z);        // top
+  for (const double at : {0.0, 0.75}) {
+    const Vec3d out = at == 0.0 ? Vec3d(-1, 0, 0) : Vec3d(1, 0, 0);
+    add_rectangle(box, Vec3d(at, 0, 0), wall * y, wall * z, out);
+    add_rectangle(box, Vec3d(at, 0, 0.75), wall * y, strip * z, out);
+    const Vec3d out_y = at == 0.0 ? Vec3d(0, -1, 0) : Vec3d(0, 1, 0);
+    add_rectangle(box, Vec3d(0, at, 0), wall * x, wall * z, out_y);
+    add_rectangle(box, Vec3d(0, at, 0.75), wall * x, strip * z, out_y);
+  }
+  REQUIRE(box.triangles.size() == 20);
+
+  std::vector<char> used(box.triangles.size(), 0);
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    for (int k = 0; k < 4; ++k) {
+      const std::array<Index, 3> f = mesh.face_vertices(t, k);
+      for (std::size_t i = 0; i < box.triangles.size(); ++i) {
+        const bool inside = std::all_of(f.begin(), f.end(), [&](Index v) {
+          return in_axis_triangle(box, i, mesh.position(v).approx);
+        });
+        if (!inside) continue;
+        const std::uint32_t id = static_cast<std::uint32_t>(i);
+        mesh.set_surface_ids(t, k, std::span<const std::uint32_t>(&id, 1));
+        for (const Index v : f) mesh.add_flags(v, kOnSurface);
+        used[i] = 1;
+      }
+    }
+  }
+  TriangleSoup holes;
+  holes.positions = box.positions;
+  for (std::size_t i = 0; i < box.triangles.size(); ++i) {
+    if (used[i] == 0) holes.triangles.push_back(box.triangles[i]);
+  }
+  REQUIRE(holes.triangles.size() == 10);  // the top and the four strips
+  REQUIRE(find_mesh_inconsistency(mesh).empty());
+
+  const double epsilon = 0.05;
+  envelope::EnvelopeOptions envelope_options;
+  envelope_options.epsilon = epsilon;
+  const std::unique_ptr<envelope::Envelope> envelope = envelope::make_envelope(box, envelope_options);
+  const WindingNumberTree input(box);
+
+  SECTION("without refinement, the boundary runs along the far faces of barrier tets") {
+    BarrierRefinementOptions options;
+    options.max_rounds = 0;
+    BarrierRefinementStats stats;
+    classify_with_refined_barrier(mesh, holes, input, WindingRule::absolute, *envelope, options, stats);
+    CHECK(stats.faces_outside > 0);
+    CHECK(stats.splits == 0);
+  }
+
+  SECTION("refined, every boundary face lies within epsilon of the box and the mesh stays valid") {
+    BarrierRefinementStats stats;
+    const TetClassification classes =
+        classify_with_refined_barrier(mesh, holes, input, WindingRule::absolute, *envelope, {}, stats);
+    CHECK(stats.faces_outside == 0);
+    CHECK(stats.splits > 0);
+    CHECK(stats.rounds > 0);
+    CHECK(find_mesh_inconsistency(mesh).empty());
+
+    double volume = 0.0, farthest = 0.0;
+    for (Index t = 0; t < mesh.tet_slots(); ++t) {
+      if (!mesh.tet_alive(t) || classes.keep[t] == 0) continue;
+      const Tet& c = mesh.tet(t);
+      const Vec3d a = mesh.position(c[0]).approx;
+      volume += (mesh.position(c[1]).approx - a).cross(mesh.position(c[2]).approx - a).dot(mesh.position(c[3]).approx - a) / 6.0;
+      for (int k = 0; k < 4; ++k) {
+        const Index n = mesh.neighbour(t, k);
+        if (n != kNoTet && classes.keep[n] != 0) continue;
+        Vec3d centre = Vec3d::Zero();
+        for (const Index v : mesh.face_vertices(t, k)) {
+          farthest = std::max(farthest, distance_to_box_surface(mesh.position(v).approx, lo, hi));
+          centre += mesh.position(v).approx / 3.0;
+        }
+        farthest = std::max(farthest, distance_to_box_surface(centre, lo, hi));
+      }
+    }
+    CHECK(farthest <= epsilon);
+    const double area = 2 * 0.75 * 0.75 + 4 * 0.75 * 0.875;
+    CHECK(std::abs(volume - 0.75 * 0.75 * 0.875) <= area * epsilon);
+  }
 }

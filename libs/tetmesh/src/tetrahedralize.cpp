@@ -226,8 +226,9 @@ Mesh embed_and_improve(const TriangleSoup& surface, const SurfaceBounds& bounds,
 // those triangles deciding each for itself. Otherwise the winding number
 // varies inside a region, so every tet is queried, most of them of the
 // input triangles the surface embeds (winding_filter.h).
-TetClassification classify_for_filter(const Mesh& mesh, const TriangleSoup& surface, std::span<const char> left_out,
-                                      const DerivedParameters& derived, WindingRule rule, StageTimer& timer) {
+TetClassification classify_for_filter(Mesh& mesh, const TriangleSoup& surface, std::span<const char> left_out,
+                                      const DerivedParameters& derived, const envelope::Envelope& envelope,
+                                      WindingRule rule, StageTimer& timer) {
   const TriangleSoup tracked = detail::tracked_surface(mesh, {}, surface, detail::Multiplicity::as_chain);
   const std::vector<std::array<Index, 2>> open_edges = detail::unbalanced_edges(tracked);
   count(timer, "closed_surface", open_edges.empty() ? 1 : 0);
@@ -260,9 +261,14 @@ TetClassification classify_for_filter(const Mesh& mesh, const TriangleSoup& surf
   count(timer, "open_edges", open_edges.size());
   count(timer, "open_edges_away_from_holes", away);
   if (closed_input) {
-    const std::vector<char> barrier = tets_near(mesh, holes);
-    count(timer, "barrier_tets", static_cast<std::size_t>(std::count(barrier.begin(), barrier.end(), 1)));
-    return classify_regions(mesh, WindingNumberTree(surface), rule, barrier);
+    BarrierRefinementStats refined;
+    TetClassification classes = classify_with_refined_barrier(mesh, holes, WindingNumberTree(surface), rule,
+                                                                      envelope, {}, refined);
+    count(timer, "barrier_tets", refined.barrier_tets);
+    count(timer, "barrier_rounds", static_cast<std::size_t>(refined.rounds));
+    count(timer, "barrier_splits", refined.splits);
+    count(timer, "barrier_faces_outside", refined.faces_outside);
+    return classes;
   }
   std::size_t near_queries = 0;
   TetClassification classes =
@@ -307,7 +313,7 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
     StageTimer timer(result.stats, "filter", logger);
     if (options.filter) {
       const TetClassification classes =
-          classify_for_filter(mesh, surface, left_out, derived, options.tetrahedralize.winding_rule, timer);
+          classify_for_filter(mesh, surface, left_out, derived, *envelope, options.tetrahedralize.winding_rule, timer);
       keep = classes.keep;
       count(timer, "kept_tets", classes.kept);
     }

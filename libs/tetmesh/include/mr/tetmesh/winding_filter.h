@@ -4,6 +4,7 @@
 // This is what fills gaps and holes of the input.
 
 #include <mr/core/tet_mesh.h>
+#include <mr/envelope/envelope.h>
 #include <mr/tetmesh/mesh.h>
 #include <mr/tetmesh/options.h>
 #include <mr/winding_number/winding_number.h>
@@ -69,6 +70,33 @@ std::vector<char> tets_near(const Mesh& mesh, const TriangleSoup& triangles);
 /// holes between regions, and each is decided at its own centroid.
 TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tree, WindingRule rule,
                                    std::span<const char> barrier = {});
+
+struct BarrierRefinementOptions {
+  /// Rounds of classify, find faces outside, split; each splits (about
+  /// halves) the tets that made such faces.
+  int max_rounds = 40;
+};
+
+struct BarrierRefinementStats {
+  int rounds = 0;
+  std::size_t splits = 0;
+  std::size_t barrier_tets = 0;   ///< in the last classification
+  std::size_t faces_outside = 0;  ///< boundary faces outside the envelope after the last round
+};
+
+/// classify_regions for a closed input with triangles left out (`holes`),
+/// the tets near them as barriers, made to keep the output boundary in the
+/// envelope. A barrier tet that straddles the input is kept or removed
+/// whole, so the boundary may run along its far faces. While some face
+/// between a kept and a removed tet (or the hull) is neither tracked nor
+/// inside `envelope` and a barrier tet is on either side, the longest edge
+/// of that tet that can be split (positive tets, tracked halves inside the
+/// envelope) is split at its midpoint and the tets are classified again.
+/// Sequential, in slot order: deterministic.
+TetClassification classify_with_refined_barrier(Mesh& mesh, const TriangleSoup& holes, const WindingNumberTree& tree,
+                                                WindingRule rule, const envelope::Envelope& envelope,
+                                                const BarrierRefinementOptions& options,
+                                                BarrierRefinementStats& stats);
 
 /// The tets with keep[t] != 0 and the vertices they use (renumbered in slot
 /// order), as doubles. Throws mr::UsageError if keep has the wrong size or
