@@ -107,13 +107,18 @@ SampledEnvelope::SampledEnvelope(const TriangleSoup& input, const EnvelopeOption
   const double d = options.sampling_step > 0.0 ? options.sampling_step : options.epsilon;
   step_ = d / options.stage;
   limit_ = epsilon_ - rounding_margin(tree_, epsilon_);
+  for (const Triangle& t : input.triangles) {
+    largest_triangle_ = std::max(largest_triangle_, longest_edge_length({input.positions[t[0]], input.positions[t[1]],
+                                                                         input.positions[t[2]]}));
+  }
   pattern_ = options.pattern;
 }
 
-double SampledEnvelope::sample(const Vec3d& p, double accept) const {
+SampledEnvelope::Sample SampledEnvelope::sample(const Vec3d& p, double accept) const {
   const double accept_sq = accept > 0.0 ? accept * accept : -1.0;
-  const double d_sq = tree_.squared_distance_bounded(p, accept_sq, limit_ * limit_);
-  return d_sq <= limit_ * limit_ ? d_sq : kInfinity;
+  const Sample hit = tree_.nearest_bounded(p, accept_sq, limit_ * limit_);
+  if (hit.squared_distance <= limit_ * limit_) return hit;
+  return {kInfinity, spatial::AabbTree::kNoSlot};
 }
 
 bool SampledEnvelope::accepts(double squared_distance, double covering_radius) const {
@@ -122,7 +127,7 @@ bool SampledEnvelope::accepts(double squared_distance, double covering_radius) c
 }
 
 bool SampledEnvelope::is_inside(const Vec3d& p) const {
-  return p.allFinite() && sample(p, limit_) != kInfinity;
+  return p.allFinite() && sample(p, limit_).squared_distance != kInfinity;
 }
 
 bool SampledEnvelope::is_inside(const Vec3d& a, const Vec3d& b) const {
@@ -130,10 +135,10 @@ bool SampledEnvelope::is_inside(const Vec3d& a, const Vec3d& b) const {
   if (pattern_ == SamplingPattern::Lattice) return lattice_segment(a, b);
   if (near_one_input_triangle({a, b})) return true;
   const double accept = limit_ - 0.5 * (b - a).norm();
-  const double da = sample(a, accept);
-  if (da == kInfinity) return false;
-  const double db = sample(b, accept);
-  if (db == kInfinity) return false;
+  const Sample da = sample(a, accept);
+  if (da.squared_distance == kInfinity) return false;
+  const Sample db = sample(b, accept);
+  if (db.squared_distance == kInfinity) return false;
   return adaptive_segment(a, b, da, db);
 }
 
@@ -146,23 +151,23 @@ bool SampledEnvelope::is_inside(const Vec3d& a, const Vec3d& b, const Vec3d& c) 
 
 bool SampledEnvelope::adaptive_from_corners(const std::array<Vec3d, 3>& v) const {
   const double accept = limit_ - longest_edge_length(v) * kInvSqrt3;
-  std::array<double, 3> d{};
+  std::array<Sample, 3> d{};
   for (int i = 0; i < 3; ++i) {
     d[i] = sample(v[i], accept);
-    if (d[i] == kInfinity) return false;
+    if (d[i].squared_distance == kInfinity) return false;
   }
   return adaptive_triangle(v, d);
 }
 
 // da, db: squared-distance bounds of the ends (see sample()).
-bool SampledEnvelope::adaptive_segment(const Vec3d& a, const Vec3d& b, double da, double db) const {
+bool SampledEnvelope::adaptive_segment(const Vec3d& a, const Vec3d& b, Sample da, Sample db) const {
   const double length = (b - a).norm();
-  if (accepts(std::max(da, db), 0.5 * length)) return true;
+  if (accepts(std::max(da.squared_distance, db.squared_distance), 0.5 * length)) return true;
   if (length <= step_) return false;
-  if (near_one_input_triangle({a, b})) return true;
+  if (near_a_sampled_triangle<2>({a, b}, {da, db}) || near_one_input_triangle({a, b})) return true;
   const Vec3d m = 0.5 * (a + b);
-  const double dm = sample(m, limit_ - 0.25 * length);
-  if (dm == kInfinity) return false;
+  const Sample dm = sample(m, limit_ - 0.25 * length);
+  if (dm.squared_distance == kInfinity) return false;
   return adaptive_segment(a, m, da, dm) && adaptive_segment(m, b, dm, db);
 }
 
@@ -171,23 +176,44 @@ bool SampledEnvelope::adaptive_segment(const Vec3d& a, const Vec3d& b, double da
 // is good enough for both halves and for all their descendants (whose
 // longest edges, hence radii eps - L/sqrt(3), only grow).
 bool SampledEnvelope::adaptive_triangle(const std::array<Vec3d, 3>& v,
-                                        const std::array<double, 3>& d) const {
+                                        const std::array<Sample, 3>& d) const {
   const auto [i, length] = longest_edge(v);
-  if (accepts(std::max({d[0], d[1], d[2]}), length * kInvSqrt3)) return true;
+  const double farthest = std::max({d[0].squared_distance, d[1].squared_distance, d[2].squared_distance});
+  if (accepts(farthest, length * kInvSqrt3)) return true;
   if (length <= step_) return false;
-  if (near_one_input_triangle({v[0], v[1], v[2]})) return true;
+  if (near_a_sampled_triangle(v, d) || near_one_input_triangle({v[0], v[1], v[2]})) return true;
   const int j = (i + 1) % 3;
   const int k = (i + 2) % 3;
   const std::array<Vec3d, 3> first{v[i], 0.5 * (v[i] + v[j]), v[k]};
   const std::array<Vec3d, 3> second{first[1], v[j], v[k]};
   const double child_length = std::max(longest_edge_length(first), longest_edge_length(second));
-  const double dm = sample(first[1], limit_ - child_length * kInvSqrt3);
-  if (dm == kInfinity) return false;
+  const Sample dm = sample(first[1], limit_ - child_length * kInvSqrt3);
+  if (dm.squared_distance == kInfinity) return false;
   return adaptive_triangle(first, {d[i], dm, d[k]}) && adaptive_triangle(second, {dm, d[j], d[k]});
 }
 
 bool SampledEnvelope::near_one_input_triangle(std::initializer_list<Vec3d> corners) const {
+  // Points within limit of one triangle are at most its longest edge plus
+  // twice the limit apart: a wider set needs no search.
+  const double reach = largest_triangle_ + 2.0 * limit_;
+  for (const Vec3d& p : corners) {
+    for (const Vec3d& q : corners) {
+      if ((p - q).squaredNorm() > reach * reach) return false;
+    }
+  }
   return tree_.one_triangle_near_all(std::span(corners.begin(), corners.size()), limit_ * limit_);
+}
+
+template <std::size_t N>
+bool SampledEnvelope::near_a_sampled_triangle(const std::array<Vec3d, N>& corners,
+                                              const std::array<Sample, N>& samples) const {
+  for (std::size_t i = 0; i < N; ++i) {
+    const std::uint32_t slot = samples[i].slot;
+    bool tried = slot == spatial::AabbTree::kNoSlot;
+    for (std::size_t j = 0; j < i && !tried; ++j) tried = samples[j].slot == slot;
+    if (!tried && tree_.slot_near_all(slot, corners, limit_ * limit_)) return true;
+  }
+  return false;
 }
 
 bool SampledEnvelope::lattice_segment(const Vec3d& a, const Vec3d& b) const {
@@ -209,7 +235,7 @@ bool SampledEnvelope::lattice_segment(const Vec3d& a, const Vec3d& b) const {
 bool SampledEnvelope::lattice_triangle(const Vec3d& a, const Vec3d& b, const Vec3d& c) const {
   const double length = longest_edge_length({a, b, c});
   const double n = std::max(1.0, std::ceil(length / step_));
-  if (n > kLargestLattice) return adaptive_from_corners({a, b, c});
+  if (n > kLargestLattice) return near_one_input_triangle({a, b, c}) || adaptive_from_corners({a, b, c});
   const double threshold = limit_ - length / n * kInvSqrt3;
   if (threshold < 0.0) return false;
   const double threshold_sq = threshold * threshold;
@@ -221,7 +247,7 @@ bool SampledEnvelope::lattice_triangle(const Vec3d& a, const Vec3d& b, const Vec
   const double whole = limit_ - length * kInvSqrt3;
   double worst_corner_sq = 0.0;
   for (const Vec3d* corner : {&a, &b, &c}) {
-    const double d_sq = sample(*corner, whole);
+    const double d_sq = sample(*corner, whole).squared_distance;
     if (d_sq > threshold_sq) return false;
     worst_corner_sq = std::max(worst_corner_sq, d_sq);
   }

@@ -107,19 +107,30 @@ ClosestHit AabbTree::closest_within(const Vec3d& p, double max_distance) const {
 }
 
 double AabbTree::squared_distance_bounded(const Vec3d& p, double accept_sq, double cap_sq) const {
+  return nearest_bounded(p, accept_sq, cap_sq).squared_distance;
+}
+
+AabbTree::BoundedHit AabbTree::nearest_bounded(const Vec3d& p, double accept_sq, double cap_sq) const {
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
-  if (!(cap_sq >= 0.0)) return kInfinity;
+  if (!(cap_sq >= 0.0)) return {kInfinity, kNoSlot};
   double bound_sq = cap_sq;
-  bool found = false;
+  std::uint32_t found = kNoSlot;
   traverse(p, bound_sq, [&](std::uint32_t slot) {
     const Vec3d* c = &corners_[3 * std::size_t{slot}];
-    const double d_sq = closest_on_triangle(p, c[0], c[1], c[2]).squared_distance;
+    const double d_sq = squared_distance_to_triangle(p, c[0], c[1], c[2]);
     if (d_sq > bound_sq) return false;
     bound_sq = d_sq;
-    found = true;
+    found = slot;
     return d_sq <= accept_sq;
   });
-  return found ? bound_sq : kInfinity;
+  return found != kNoSlot ? BoundedHit{bound_sq, found} : BoundedHit{kInfinity, kNoSlot};
+}
+
+bool AabbTree::slot_near_all(std::uint32_t slot, std::span<const Vec3d> points, double r_sq) const {
+  const Vec3d* c = &corners_[3 * std::size_t{slot}];
+  return std::all_of(points.begin(), points.end(), [&](const Vec3d& p) {
+    return squared_distance_to_triangle(p, c[0], c[1], c[2]) <= r_sq;
+  });
 }
 
 bool AabbTree::one_triangle_near_all(std::span<const Vec3d> points, double r_sq) const {
@@ -129,7 +140,7 @@ bool AabbTree::one_triangle_near_all(std::span<const Vec3d> points, double r_sq)
   traverse(points[0], bound_sq, [&](std::uint32_t slot) {
     const Vec3d* c = &corners_[3 * std::size_t{slot}];
     found = std::all_of(points.begin(), points.end(), [&](const Vec3d& p) {
-      return closest_on_triangle(p, c[0], c[1], c[2]).squared_distance <= r_sq;
+      return squared_distance_to_triangle(p, c[0], c[1], c[2]) <= r_sq;
     });
     return found;
   });

@@ -57,4 +57,34 @@ PointOnPrimitive closest_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d
   return {q, height * height / normal_sq};
 }
 
+// Voronoi regions of the corners and edges by the signs of dot products
+// (as in Ericson, Real-Time Collision Detection, 5.1.5); the face region
+// takes the distance to the plane, which needs no division by the
+// barycentric denominator. Thin triangles take the edge path above.
+double squared_distance_to_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  const Vec3d ab = b - a;
+  const Vec3d ac = c - a;
+  const Vec3d normal = ab.cross(ac);
+  const double normal_sq = normal.squaredNorm();
+  const double longest_sq = std::max({ab.squaredNorm(), ac.squaredNorm(), (c - b).squaredNorm()});
+  const double min_normal = kDegenerateNormalFraction * longest_sq;
+  if (!(normal_sq > min_normal * min_normal)) return closest_on_edges(p, a, b, c).squared_distance;
+
+  const Vec3d ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return ap.squaredNorm();
+  const Vec3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return bp.squaredNorm();
+  if (d1 >= 0.0 && d3 <= 0.0 && d1 * d4 - d3 * d2 <= 0.0) return (ap - (d1 / (d1 - d3)) * ab).squaredNorm();
+  const Vec3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return cp.squaredNorm();
+  if (d2 >= 0.0 && d6 <= 0.0 && d5 * d2 - d1 * d6 <= 0.0) return (ap - (d2 / (d2 - d6)) * ac).squaredNorm();
+  const double e = d4 - d3, f = d5 - d6;
+  if (e >= 0.0 && f >= 0.0 && d3 * d6 - d5 * d4 <= 0.0) return (bp - (e / (e + f)) * (c - b)).squaredNorm();
+  const double height = normal.dot(ap);
+  return height * height / normal_sq;
+}
+
 }  // namespace mr::spatial

@@ -85,6 +85,27 @@ TEST_CASE("closest point on a triangle: regions and degenerate triangles", "[aab
   CHECK(closest_on_triangle({1, 1, 1}, a, a, a).squared_distance == Approx(3.0));
 }
 
+TEST_CASE("squared distance to a triangle agrees with the closest point, in every region", "[aabb]") {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> flatten(0.0, 1.0);
+  int compared = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vec3d a = random_point(rng, -1, 1), b = random_point(rng, -1, 1);
+    // Every fourth triangle thin or degenerate: c near or on the line ab.
+    Vec3d c = random_point(rng, -1, 1);
+    if (trial % 4 == 0) c = a + flatten(rng) * (b - a) + std::pow(10.0, -3.0 * (trial % 7)) * (c - a);
+    if (trial % 50 == 0) c = b;
+    for (int i = 0; i < 20; ++i) {
+      const Vec3d p = random_point(rng, -2, 2);
+      const double reference = closest_on_triangle(p, a, b, c).squared_distance;
+      const double fast = mr::spatial::squared_distance_to_triangle(p, a, b, c);
+      CHECK(fast == Approx(reference).epsilon(1e-9).margin(1e-12));
+      ++compared;
+    }
+  }
+  CHECK(compared == 40000);
+}
+
 TEST_CASE("AABB tree agrees with brute force on random soups", "[aabb]") {
   std::mt19937_64 rng(42);
   for (const int count : {1, 2, 5, 100, 3000}) {

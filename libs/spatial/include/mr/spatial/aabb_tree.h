@@ -62,6 +62,17 @@ class AabbTree {
   ///  - +infinity, if it exceeds cap_sq.
   /// So s is always an upper bound of the true value, and exact when it matters.
   double squared_distance_bounded(const Vec3d& p, double accept_sq, double cap_sq) const;
+  /// squared_distance_bounded and the slot of the triangle that gave it
+  /// (kNoSlot with +infinity).
+  struct BoundedHit {
+    double squared_distance;
+    std::uint32_t slot;
+  };
+  static constexpr std::uint32_t kNoSlot = 0xffffffffu;
+  BoundedHit nearest_bounded(const Vec3d& p, double accept_sq, double cap_sq) const;
+  /// Whether every point of `points` lies within squared distance r_sq of
+  /// the triangle in `slot` (a slot from nearest_bounded).
+  bool slot_near_all(std::uint32_t slot, std::span<const Vec3d> points, double r_sq) const;
 
   /// True when one single triangle has every point of `points` within
   /// squared distance r_sq. Since the distance to a triangle is a convex

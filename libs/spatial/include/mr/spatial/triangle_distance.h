@@ -21,4 +21,10 @@ PointOnPrimitive closest_on_segment(const Vec3d& p, const Vec3d& a, const Vec3d&
 PointOnPrimitive closest_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b,
                                      const Vec3d& c);
 
+/// Squared distance from p to triangle (a, b, c), the same as
+/// closest_on_triangle's up to rounding but faster: the region of p
+/// (vertex, edge or face) is found from six dot products, and only that
+/// feature's distance is computed. For the hot loops of distance queries.
+double squared_distance_to_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c);
+
 }  // namespace mr::spatial
