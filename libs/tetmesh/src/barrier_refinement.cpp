@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <tuple>
 #include <vector>
 
@@ -19,9 +20,23 @@ bool kept(const TetClassification& classes, Index t) { return t != kNoTet && cla
 // Barrier tets on either side of a boundary face (kept against removed or
 // hull) that is not tracked and leaves the envelope, in slot order. Counts
 // all such faces in `outside`, whether or not a barrier tet is there to split.
+// Sorted corners of a face, and whether it lies in the envelope: vertices
+// do not move during the refinement, so an answer holds for later rounds.
+using FaceInside = std::map<std::array<Index, 3>, bool>;
+
+bool face_inside(const Mesh& mesh, std::array<Index, 3> f, const envelope::Envelope& envelope, FaceInside& known) {
+  std::sort(f.begin(), f.end());
+  const auto [it, added] = known.try_emplace(f, false);
+  if (added) {
+    it->second =
+        envelope.is_inside(mesh.position(f[0]).approx, mesh.position(f[1]).approx, mesh.position(f[2]).approx);
+  }
+  return it->second;
+}
+
 std::vector<Index> tets_making_faces_outside(const Mesh& mesh, const TetClassification& classes,
                                              std::span<const char> barrier, const envelope::Envelope& envelope,
-                                             std::size_t& outside) {
+                                             FaceInside& known, std::size_t& outside) {
   std::vector<char> marked(mesh.tet_slots(), 0);
   outside = 0;
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
@@ -29,10 +44,7 @@ std::vector<Index> tets_making_faces_outside(const Mesh& mesh, const TetClassifi
     for (int k = 0; k < 4; ++k) {
       const Index n = mesh.neighbour(t, k);
       if (kept(classes, n) || mesh.is_surface_face(t, k)) continue;
-      const std::array<Index, 3> f = mesh.face_vertices(t, k);
-      if (envelope.is_inside(mesh.position(f[0]).approx, mesh.position(f[1]).approx, mesh.position(f[2]).approx)) {
-        continue;
-      }
+      if (face_inside(mesh, mesh.face_vertices(t, k), envelope, known)) continue;
       ++outside;
       if (barrier[t] != 0) marked[t] = 1;
       if (n != kNoTet && barrier[n] != 0) marked[n] = 1;
@@ -78,12 +90,14 @@ TetClassification classify_with_refined_barrier(Mesh& mesh, const TriangleSoup& 
                                                 const BarrierRefinementOptions& options,
                                                 BarrierRefinementStats& stats) {
   Workspace ws(mesh, &envelope, 1.0, 10.0);
+  WindingCache winding;
+  FaceInside known;
   for (stats.rounds = 0;; ++stats.rounds) {
     const std::vector<char> barrier = tets_near(mesh, holes);
-    TetClassification classes = classify_regions(mesh, tree, rule, barrier);
+    TetClassification classes = classify_regions(mesh, tree, rule, barrier, &winding);
     stats.barrier_tets = static_cast<std::size_t>(std::count(barrier.begin(), barrier.end(), 1));
     const std::vector<Index> to_split =
-        tets_making_faces_outside(mesh, classes, barrier, envelope, stats.faces_outside);
+        tets_making_faces_outside(mesh, classes, barrier, envelope, known, stats.faces_outside);
     if (to_split.empty() || stats.rounds == options.max_rounds) return classes;
     std::size_t splits = 0;
     for (const Index t : to_split) {

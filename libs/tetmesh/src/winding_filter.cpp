@@ -178,8 +178,29 @@ std::vector<char> tets_near(const Mesh& mesh, const TriangleSoup& triangles) {
   return near;
 }
 
+namespace {
+
+// tree.evaluate(queries), reusing the values of points asked before.
+std::vector<double> evaluate_cached(const WindingNumberTree& tree, const std::vector<Vec3d>& queries,
+                                    WindingCache* cache) {
+  if (cache == nullptr) return tree.evaluate(queries);
+  const auto key = [](const Vec3d& p) { return std::array<double, 3>{p.x(), p.y(), p.z()}; };
+  std::vector<Vec3d> missing;
+  for (const Vec3d& q : queries) {
+    if (!cache->contains(key(q))) missing.push_back(q);
+  }
+  const std::vector<double> values = tree.evaluate(missing);
+  for (std::size_t i = 0; i < missing.size(); ++i) cache->emplace(key(missing[i]), values[i]);
+  std::vector<double> out;
+  out.reserve(queries.size());
+  for (const Vec3d& q : queries) out.push_back(cache->at(key(q)));
+  return out;
+}
+
+}  // namespace
+
 TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tree, WindingRule rule,
-                                   std::span<const char> barrier) {
+                                   std::span<const char> barrier, WindingCache* cache) {
   const std::vector<std::int32_t> labels = detail::region_labels(mesh, barrier);
   const std::int32_t regions = labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end());
   std::vector<Index> largest(static_cast<std::size_t>(regions) + 1, kNoTet);
@@ -198,7 +219,7 @@ TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tr
   }
   std::vector<Vec3d> queries;
   for (std::int32_t r = 1; r <= regions; ++r) queries.push_back(tet_centroid(mesh, largest[r]));
-  const std::vector<double> values = tree.evaluate(queries);
+  const std::vector<double> values = evaluate_cached(tree, queries, cache);
   const std::vector<Index> slots = live_tets(mesh);
   return classification(mesh, slots, rule, [&](std::size_t i) { return values[labels[slots[i]] - 1]; });
 }

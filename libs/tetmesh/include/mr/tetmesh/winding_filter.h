@@ -9,6 +9,8 @@
 #include <mr/tetmesh/options.h>
 #include <mr/winding_number/winding_number.h>
 
+#include <array>
+#include <map>
 #include <span>
 #include <vector>
 
@@ -68,8 +70,11 @@ std::vector<char> tets_near(const Mesh& mesh, const TriangleSoup& triangles);
 /// input some of whose triangles were left out (so the tracked surface has
 /// holes), with the tets near those triangles as `barrier`: they plug the
 /// holes between regions, and each is decided at its own centroid.
+/// `cache`, when given, keeps the winding number of every point asked, so
+/// that classifying again after local edits asks only the new points.
+using WindingCache = std::map<std::array<double, 3>, double>;
 TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tree, WindingRule rule,
-                                   std::span<const char> barrier = {});
+                                   std::span<const char> barrier = {}, WindingCache* cache = nullptr);
 
 struct BarrierRefinementOptions {
   /// Rounds of classify, find faces outside, split; each splits (about
