@@ -17,9 +17,6 @@ using improve_detail::Workspace;
 
 bool kept(const TetClassification& classes, Index t) { return t != kNoTet && classes.keep[t] != 0; }
 
-// Barrier tets on either side of a boundary face (kept against removed or
-// hull) that is not tracked and leaves the envelope, in slot order. Counts
-// all such faces in `outside`, whether or not a barrier tet is there to split.
 // Sorted corners of a face, and whether it lies in the envelope: vertices
 // do not move during the refinement, so an answer holds for later rounds.
 using FaceInside = std::map<std::array<Index, 3>, bool>;
@@ -34,6 +31,9 @@ bool face_inside(const Mesh& mesh, std::array<Index, 3> f, const envelope::Envel
   return it->second;
 }
 
+// Barrier tets on either side of a boundary face (kept against removed or
+// hull) that is not tracked and leaves the envelope, in slot order. Counts
+// all such faces in `outside`, whether or not a barrier tet is there to split.
 std::vector<Index> tets_making_faces_outside(const Mesh& mesh, const TetClassification& classes,
                                              std::span<const char> barrier, const envelope::Envelope& envelope,
                                              FaceInside& known, std::size_t& outside) {
