@@ -108,8 +108,9 @@ SampledEnvelope::SampledEnvelope(const TriangleSoup& input, const EnvelopeOption
   step_ = d / options.stage;
   limit_ = epsilon_ - rounding_margin(tree_, epsilon_);
   for (const Triangle& t : input.triangles) {
-    largest_triangle_ = std::max(largest_triangle_, longest_edge_length({input.positions[t[0]], input.positions[t[1]],
-                                                                         input.positions[t[2]]}));
+    largest_triangle_ =
+        std::max(largest_triangle_,
+                 longest_edge_length({input.positions[t[0]], input.positions[t[1]], input.positions[t[2]]}));
   }
   pattern_ = options.pattern;
 }
@@ -175,8 +176,7 @@ bool SampledEnvelope::adaptive_segment(const Vec3d& a, const Vec3d& b, Sample da
 // the smaller acceptance radius of the two halves, so its early-exit bound
 // is good enough for both halves and for all their descendants (whose
 // longest edges, hence radii eps - L/sqrt(3), only grow).
-bool SampledEnvelope::adaptive_triangle(const std::array<Vec3d, 3>& v,
-                                        const std::array<Sample, 3>& d) const {
+bool SampledEnvelope::adaptive_triangle(const std::array<Vec3d, 3>& v, const std::array<Sample, 3>& d) const {
   const auto [i, length] = longest_edge(v);
   const double farthest = std::max({d[0].squared_distance, d[1].squared_distance, d[2].squared_distance});
   if (accepts(farthest, length * kInvSqrt3)) return true;
@@ -196,9 +196,9 @@ bool SampledEnvelope::near_one_input_triangle(std::initializer_list<Vec3d> corne
   // Points within limit of one triangle are at most its longest edge plus
   // twice the limit apart: a wider set needs no search.
   const double reach = largest_triangle_ + 2.0 * limit_;
-  for (const Vec3d& p : corners) {
-    for (const Vec3d& q : corners) {
-      if ((p - q).squaredNorm() > reach * reach) return false;
+  for (auto p = corners.begin(); p != corners.end(); ++p) {
+    for (auto q = p + 1; q != corners.end(); ++q) {
+      if ((*p - *q).squaredNorm() > reach * reach) return false;
     }
   }
   return tree_.one_triangle_near_all(std::span(corners.begin(), corners.size()), limit_ * limit_);

@@ -21,12 +21,13 @@ bool kept(const TetClassification& classes, Index t) { return t != kNoTet && cla
 // do not move during the refinement, so an answer holds for later rounds.
 using FaceInside = std::map<std::array<Index, 3>, bool>;
 
-bool face_inside(const Mesh& mesh, std::array<Index, 3> f, const envelope::Envelope& envelope, FaceInside& known) {
+bool face_inside(const Mesh& mesh, std::array<Index, 3> f, const envelope::Envelope& envelope,
+                 FaceInside& known) {
   std::sort(f.begin(), f.end());
   const auto [it, added] = known.try_emplace(f, false);
   if (added) {
-    it->second =
-        envelope.is_inside(mesh.position(f[0]).approx, mesh.position(f[1]).approx, mesh.position(f[2]).approx);
+    it->second = envelope.is_inside(mesh.position(f[0]).approx, mesh.position(f[1]).approx,
+                                    mesh.position(f[2]).approx);
   }
   return it->second;
 }
@@ -35,8 +36,9 @@ bool face_inside(const Mesh& mesh, std::array<Index, 3> f, const envelope::Envel
 // hull) that is not tracked and leaves the envelope, in slot order. Counts
 // all such faces in `outside`, whether or not a barrier tet is there to split.
 std::vector<Index> tets_making_faces_outside(const Mesh& mesh, const TetClassification& classes,
-                                             std::span<const char> barrier, const envelope::Envelope& envelope,
-                                             FaceInside& known, std::size_t& outside) {
+                                             std::span<const char> barrier,
+                                             const envelope::Envelope& envelope, FaceInside& known,
+                                             std::size_t& outside) {
   std::vector<char> marked(mesh.tet_slots(), 0);
   outside = 0;
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
@@ -85,10 +87,12 @@ bool split_longest_edge(Workspace& ws, Index t) {
 
 }  // namespace
 
-TetClassification classify_with_refined_barrier(Mesh& mesh, const TriangleSoup& holes, const WindingNumberTree& tree,
-                                                WindingRule rule, const envelope::Envelope& envelope,
+TetClassification classify_with_refined_barrier(Mesh& mesh, const TriangleSoup& holes,
+                                                const WindingNumberTree& tree, WindingRule rule,
+                                                const envelope::Envelope& envelope,
                                                 const BarrierRefinementOptions& options,
                                                 BarrierRefinementStats& stats) {
+  // Splits use neither the target length nor the stop energy.
   Workspace ws(mesh, &envelope, 1.0, 10.0);
   WindingCache winding;
   FaceInside known;

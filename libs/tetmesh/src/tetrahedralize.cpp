@@ -262,8 +262,8 @@ TetClassification classify_for_filter(Mesh& mesh, const TriangleSoup& surface, s
   count(timer, "open_edges_away_from_holes", away);
   if (closed_input) {
     BarrierRefinementStats refined;
-    TetClassification classes = classify_with_refined_barrier(mesh, holes, WindingNumberTree(surface), rule,
-                                                                      envelope, {}, refined);
+    TetClassification classes =
+        classify_with_refined_barrier(mesh, holes, WindingNumberTree(surface), rule, envelope, {}, refined);
     count(timer, "barrier_tets", refined.barrier_tets);
     count(timer, "barrier_rounds", static_cast<std::size_t>(refined.rounds));
     count(timer, "barrier_splits", refined.splits);
