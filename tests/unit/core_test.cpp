@@ -2,6 +2,7 @@
 
 #include <mr/core/boundary.h>
 #include <mr/core/errors.h>
+#include <mr/core/grid_snap.h>
 #include <mr/core/openmesh_convert.h>
 
 #include <catch2/catch.hpp>
@@ -126,4 +127,27 @@ TEST_CASE("can_add_face tells exactly which faces OpenMesh's add_face refuses", 
   CHECK(disagreements == 0);
   CHECK(refused > 1000);         // all three kinds of refusal occur
   CHECK(log_lines == refused);   // add_face logs each refusal: what to_trimesh avoids
+}
+
+TEST_CASE("grid snapping rounds to the nearest multiple of a power of two", "[core][snap]") {
+  CHECK(power_of_two_at_most(1.0) == 1.0);
+  CHECK(power_of_two_at_most(0.75) == 0.5);
+  CHECK(power_of_two_at_most(1e-3) == std::ldexp(1.0, -10));
+  TriangleSoup soup;
+  soup.positions = {{1.0 + 1e-12, -0.3, 7.0}, {0.5, 0.25, -0.125}, {-1e-9, 3.0 * 0.0625 + 0.03, 0.09375}};
+  soup.triangles = {{0, 1, 2}};
+  const TriangleSoup before = soup;
+  const double spacing = 0.0625;
+  CHECK(snap_to_grid(soup, spacing) == 2);  // the second vertex is on the grid already
+  CHECK(soup.positions[0] == Vec3d(1.0, -0.3125, 7.0));
+  CHECK(soup.positions[1] == before.positions[1]);
+  CHECK(soup.positions[2] == Vec3d(0.0, 0.1875, 0.125));  // 0.09375 is 1.5 steps: a tie, to even
+  CHECK(soup.triangles == before.triangles);
+  for (std::size_t i = 0; i < soup.positions.size(); ++i) {
+    CHECK((soup.positions[i] - before.positions[i]).norm() <= spacing * std::sqrt(3.0) / 2);
+    for (int axis = 0; axis < 3; ++axis) {
+      const double steps = soup.positions[i][axis] / spacing;
+      CHECK(steps == std::round(steps));
+    }
+  }
 }

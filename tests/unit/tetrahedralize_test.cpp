@@ -17,6 +17,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -43,19 +44,28 @@ struct Case {
   double tolerance;
   /// Insert the input as it is: simplification would remove the defect.
   bool skip_simplify = false;
+  /// Whether the embedded surface is a closed chain (filter stats).
+  bool embeds_closed = true;
+  /// Snap to the default grid (0: embed the coordinates as they are).
+  double snap_fraction = tetmesh::TetrahedralizeOptions().snap_fraction;
 };
+
+// The cube with a needle triangle inside, `height` thick.
+TriangleSoup cube_with_sliver(double height) {
+  TriangleSoup soup = test::cube_soup();
+  const Index base = static_cast<Index>(soup.positions.size());
+  soup.positions.push_back({0.2, 0.5, 0.5});
+  soup.positions.push_back({0.8, 0.5, 0.5});
+  soup.positions.push_back({0.5, 0.5 + height, 0.5});
+  soup.triangles.push_back({base, base + 1, base + 2});
+  return soup;
+}
 
 std::vector<Case> broken_inputs() {
   TriangleSoup missing_face = test::cube_soup();
   missing_face.triangles.pop_back();
   TriangleSoup duplicated = test::cube_soup();
   duplicated.append(test::cube_soup());
-  TriangleSoup sliver = test::cube_soup();
-  const Index base = static_cast<Index>(sliver.positions.size());
-  sliver.positions.push_back({0.2, 0.5, 0.5});
-  sliver.positions.push_back({0.8, 0.5, 0.5});
-  sliver.positions.push_back({0.5, 0.5 + 1e-9, 0.5});  // a needle inside the cube
-  sliver.triangles.push_back({base, base + 1, base + 2});
   TriangleSoup flipped_face = test::cube_soup();
   for (std::size_t f = 0; f < 2; ++f) std::swap(flipped_face.triangles[f][1], flipped_face.triangles[f][2]);
   TriangleSoup hollow = test::cube_soup(0.0, 3.0);
@@ -75,12 +85,18 @@ std::vector<Case> broken_inputs() {
       {"cube", test::cube_soup(), 1.0, area_eps},
       {"two overlapping cubes", merged(test::cube_soup(), translated(test::cube_soup(), {0.5, 0.5, 0.5})),
        2.0 - 0.125, area_eps},
-      {"cube with a missing face", missing_face, 1.0, 0.1},
+      {"cube with a missing face", missing_face, 1.0, 0.1, false, false},
       {"coplanar stack", merged(test::cube_soup(), translated(test::cube_soup(), {0.0, 0.0, 1.0})), 2.0, area_eps},
       {"bowtie (cubes sharing an edge)", merged(test::cube_soup(), translated(test::cube_soup(), {1.0, 1.0, 0.0})),
        2.0, area_eps},
       {"duplicated faces", duplicated, 1.0, area_eps},
-      {"sliver triangle", sliver, 1.0, area_eps},
+      // The default grid is about 1e-6 here: a needle 1e-5 thick is
+      // inserted, one 1e-9 thick is flattened to a segment (left
+      // unembedded, within the grid of the input) unless snapping is off.
+      {"sliver triangle", cube_with_sliver(1e-5), 1.0, area_eps, false, false},
+      {"sliver triangle thinner than the snap grid", cube_with_sliver(1e-9), 1.0, area_eps},
+      {"sliver triangle thinner than the snap grid, not snapped", cube_with_sliver(1e-9), 1.0, area_eps, false,
+       false, 0.0},
       {"cube with a flipped face", flipped_face, 1.0, area_eps},
       {"cube with a folded fan", folded_fan, 1.0, area_eps, true},
       {"hollow cube (inward inner shell)", hollow, 26.0, 3e-3 * std::sqrt(3.0) * 60},
@@ -102,6 +118,7 @@ TEST_CASE("tetrahedralize: broken inputs give valid meshes of the expected volum
       tetmesh::PipelineOptions options;
       options.improve = false;  // the improvement stage has its own tests; one run below uses it
       options.tetrahedralize.skip_simplify = c.skip_simplify;
+      options.tetrahedralize.snap_fraction = c.snap_fraction;
       const tetmesh::PipelineResult result = tetmesh::tetrahedralize(c.soup, options);
       const check::TetReport report = check::check_tets(result.mesh);
       CHECK(report.valid());
@@ -111,16 +128,85 @@ TEST_CASE("tetrahedralize: broken inputs give valid meshes of the expected volum
       CHECK(distance.max <= result.parameters.epsilon);
       // A closed input embeds as a closed chain (faces shared by touching
       // parts cancel), so the filter can decide each region at once.
-      const bool closed_input = c.name != "cube with a missing face" && c.name != "sliver triangle";
       std::int64_t closed_surface = -1;
       for (const tetmesh::StageStats& stage : result.stats.stages) {
         for (const auto& [key, value] : stage.counts) {
           if (stage.name == "filter" && key == "closed_surface") closed_surface = value;
         }
       }
-      CHECK(closed_surface == (closed_input ? 1 : 0));
+      CHECK(closed_surface == (c.embeds_closed ? 1 : 0));
     }
   }
+}
+
+// A count of a stage as --stats writes it: the last value given (a stage
+// that runs again, on a retry, counts again); -1 when absent.
+std::int64_t stage_count(const tetmesh::PipelineStats& stats, const std::string& stage, const std::string& key) {
+  std::int64_t found = -1;
+  for (const tetmesh::StageStats& s : stats.stages) {
+    for (const auto& [name, value] : s.counts) {
+      if (s.name == stage && name == key) found = value;
+    }
+  }
+  return found;
+}
+
+TEST_CASE("tetrahedralize: the surface is snapped to a grid below epsilon before insertion", "[tetrahedralize]") {
+  tetmesh::PipelineOptions options;
+  options.improve = false;
+  const TriangleSoup input = cube_with_sliver(1e-9);
+  const tetmesh::PipelineResult snapped = tetmesh::tetrahedralize(input, options);
+  // epsilon = 1e-3 * sqrt(3); the grid is the power of two at most 1e-3 of
+  // it, 2^-20 (0.2 and 0.8 are not on it; the cube corners are).
+  CHECK(stage_count(snapped.stats, "snap", "grid_log2") == -20);
+  CHECK(stage_count(snapped.stats, "snap", "moved_vertices") == 3);  // the needle: x = 0.2, 0.8 and its tip
+  CHECK(stage_count(snapped.stats, "insertion", "degenerate_skipped") == 1);
+  CHECK(stage_count(snapped.stats, "insertion", "left_out") == 0);
+
+  options.tetrahedralize.snap_fraction = 0.0;
+  const tetmesh::PipelineResult exact = tetmesh::tetrahedralize(input, options);
+  CHECK(stage_count(exact.stats, "snap", "moved_vertices") == -1);
+  CHECK(stage_count(exact.stats, "insertion", "degenerate_skipped") == 0);
+  for (const tetmesh::PipelineResult* result : {&snapped, &exact}) {
+    CHECK(check::check_tets(result->mesh).valid());
+    CHECK(check::one_sided_distance(result->tracked_surface, input).max <= result->parameters.epsilon);
+  }
+}
+
+// A unit cube holding a "book" of long triangles whose spines nearly
+// coincide, about 1e-7 apart (as bench/book_of_triangles.py): every page
+// crosses the others close to one line.
+TriangleSoup book_of_triangles(int pages) {
+  TriangleSoup soup;
+  soup.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  soup.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                    {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  for (int i = 0; i < pages; ++i) {
+    const double angle = 0.13 * i + 0.01;
+    const double offset = 1e-7 * i;
+    const Index base = static_cast<Index>(soup.positions.size());
+    soup.positions.push_back({0.05, 0.5 + 3 * offset, 0.5 - offset});
+    soup.positions.push_back({0.95, 0.5 - offset, 0.5 + 2 * offset});
+    soup.positions.push_back({0.5, 0.5 + 0.45 * std::cos(angle), 0.5 + 0.45 * std::sin(angle)});
+    soup.triangles.push_back({base, base + 1, base + 2});
+  }
+  return soup;
+}
+
+TEST_CASE("tetrahedralize: stuck cut points are retried on a coarser grid before any triangle is left out",
+          "[tetrahedralize]") {
+  // With 4 pages, some cut points on the default grid (2^-20) cannot be
+  // rounded; on the grid 16 times coarser every page is embedded.
+  tetmesh::PipelineOptions options;
+  options.improve = false;
+  options.tetrahedralize.skip_simplify = true;
+  const TriangleSoup book = book_of_triangles(4);
+  const tetmesh::PipelineResult result = tetmesh::tetrahedralize(book, options);
+  CHECK(stage_count(result.stats, "snap", "grid_log2") == -16);
+  CHECK(stage_count(result.stats, "insertion", "left_out") == 0);
+  CHECK(stage_count(result.stats, "insertion", "degenerate_skipped") == 0);
+  CHECK(check::check_tets(result.mesh).valid());
+  CHECK(check::one_sided_distance(result.tracked_surface, book).max <= result.parameters.epsilon);
 }
 
 TEST_CASE("tetrahedralize: the full pipeline with improvement keeps the cube", "[tetrahedralize]") {

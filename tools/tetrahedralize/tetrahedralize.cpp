@@ -66,6 +66,10 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        [&](const std::string&) { t.winding_rule = tetmesh::WindingRule::positive; }},
       {"--no-filter", "", "", "keep every tet, labelled by region (tets connected without crossing the input)",
        [&](const std::string&) { o.pipeline.filter = false; }},
+      {"--snap", "", "F",
+       "snap the input to a grid of F times epsilon (a power of two at most) before inserting it "
+       "(default 1e-3; 0: insert the coordinates as they are)",
+       [&](const std::string& v) { t.snap_fraction = parse_double("--snap", v); }},
       {"--skip-simplify", "", "", "insert the input as it is, without simplifying it first",
        [&](const std::string&) { t.skip_simplify = true; }},
       {"--surface", "", "FILE", "also write the tracked surface (the input as embedded)",

@@ -1,6 +1,7 @@
 #include <mr/tetmesh/options.h>
 
 #include <mr/core/errors.h>
+#include <mr/core/grid_snap.h>
 
 #include <algorithm>
 #include <cmath>
@@ -34,6 +35,7 @@ DerivedParameters derive_parameters(const TetrahedralizeOptions& options, const 
   require_non_negative(options.edge_length_abs, "edge length (absolute)");
   require_non_negative(options.lattice_spacing_rel, "lattice spacing (relative)");
   require_non_negative(options.lattice_clearance_rel, "lattice clearance (relative)");
+  require_non_negative(options.snap_fraction, "snap fraction");
   require_non_negative(options.stop_energy, "stop energy");
   if (options.max_passes < 0) throw UsageError("max passes must not be negative");
   if (options.threads < 0) throw UsageError("threads must not be negative");
@@ -58,6 +60,8 @@ DerivedParameters derive_parameters(const TetrahedralizeOptions& options, const 
     throw UsageError("the lattice clearance (delta) must exceed epsilon, or lattice points could "
                      "sit inside the envelope");
   }
+  const double snap = options.snap_fraction * p.epsilon;
+  p.snap_spacing = std::isnormal(snap) ? power_of_two_at_most(snap) : 0.0;
   // fTetWild's choice: at least one target edge length of room around the
   // input, so that the tets between surface and box can reach the target
   // size, and at least 2 epsilon, so that no envelope ever touches the box.

@@ -141,12 +141,15 @@ TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const
 }
 
 std::vector<std::array<Index, 2>> unbalanced_edges(const TriangleSoup& surface) {
-  // +1 for each use of edge (lo, hi) from lo to hi, -1 the other way.
+  // +1 for each use of edge (lo, hi) from lo to hi, -1 the other way. An
+  // edge from a vertex to itself (a triangle with two corners welded, as
+  // snapping makes) is no edge: it bounds nothing.
   std::vector<std::pair<std::array<Index, 2>, int>> uses;
   uses.reserve(3 * surface.triangles.size());
   for (const Triangle& t : surface.triangles) {
     for (int i = 0; i < 3; ++i) {
       const Index a = t[i], b = t[(i + 1) % 3];
+      if (a == b) continue;
       uses.push_back({{std::min(a, b), std::max(a, b)}, a < b ? 1 : -1});
     }
   }

@@ -5,6 +5,7 @@
 
 #include <mr/core/double_sided.h>
 #include <mr/core/errors.h>
+#include <mr/core/grid_snap.h>
 #include <mr/core/orientation.h>
 #include <mr/core/thicken.h>
 #include <mr/core/weld.h>
@@ -21,6 +22,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -52,8 +54,8 @@ void count(StageTimer& timer, const char* key, std::size_t value) {
 }
 
 // Embeddings to try before giving up: when some cut points cannot be
-// rounded even after improvement, the triangles that created them are left
-// out and the embedding starts over from a fresh background mesh.
+// rounded even after improvement, the embedding starts over from a fresh
+// background mesh (see embed_and_improve).
 constexpr int kEmbeddingAttempts = 8;
 
 std::unique_ptr<envelope::Envelope> input_envelope(const TriangleSoup& input, const DerivedParameters& derived) {
@@ -170,42 +172,85 @@ void improve(Mesh& mesh, const SurfaceBounds& bounds, const DerivedParameters& d
   }
 }
 
-// Embeds the surface, improves the mesh when asked, and makes sure every
-// vertex has double coordinates. Cut points that rounding cannot place stay
-// rational through improvement, which may free them by moving their
-// neighbours; only when some are still stuck is the embedding redone
-// without the triangles that created them. The fast path (no improvement)
-// redoes it at once: two improvement passes to free the points cost more
-// than a new embedding on a fragmented mesh (trimesh/featuretype: 100 s
-// against 20 s). `left_out` receives, per triangle of `surface`, whether
-// it had to be left out.
-Mesh embed_and_improve(const TriangleSoup& surface, const SurfaceBounds& bounds,
-                       const DerivedParameters& derived, const PipelineOptions& options, PipelineStats& stats,
-                       const Logger& logger, std::vector<char>& left_out) {
-  left_out.assign(surface.triangles.size(), 0);
+// The surface on a grid of `spacing` (0: as it is).
+TriangleSoup snapped_surface(const TriangleSoup& surface, double spacing, PipelineStats& stats,
+                             const Logger& logger) {
+  StageTimer timer(stats, "snap", logger);
+  TriangleSoup snapped = surface;
+  if (spacing > 0) {
+    int exponent = 0;
+    std::frexp(spacing, &exponent);
+    timer.stage().count("grid_log2", exponent - 1);
+    count(timer, "moved_vertices", snap_to_grid(snapped, spacing));
+  }
+  return snapped;
+}
+
+// A retry after cut points got stuck snaps the surface to a grid this much
+// coarser, while the grid stays below kMaxSnapFraction of epsilon (one
+// step from the default); only then are triangles left out.
+constexpr double kSnapCoarsening = 16.0;
+constexpr double kMaxSnapFraction = 1.0 / 32.0;
+
+struct EmbeddedSurface {
+  Mesh mesh;
+  /// The surface as embedded (snapped); its triangles are the input's.
+  TriangleSoup surface;
+  /// Per triangle of `surface`, whether it had to be left out.
+  std::vector<char> left_out;
+};
+
+// Snaps and embeds the surface, improves the mesh when asked, and makes
+// sure every vertex has double coordinates. Cut points that rounding cannot
+// place stay rational through improvement, which may free them by moving
+// their neighbours. When some are still stuck the embedding is redone: on
+// a coarser grid first, then without the triangles that created them. The
+// fast path (no improvement) redoes it at once: two improvement passes to
+// free the points cost more than a new embedding on a fragmented mesh
+// (trimesh/featuretype: 100 s against 20 s).
+EmbeddedSurface embed_and_improve(const TriangleSoup& simplified, const SurfaceBounds& bounds,
+                                  const DerivedParameters& derived, const PipelineOptions& options,
+                                  PipelineStats& stats, const Logger& logger) {
+  double spacing = derived.snap_spacing;
+  EmbeddedSurface out{Mesh(), snapped_surface(simplified, spacing, stats, logger),
+                      std::vector<char>(simplified.triangles.size(), 0)};
   for (int attempt = 1;; ++attempt) {
-    Embedding embedding = embed_once(surface, left_out, bounds, derived, options, stats, logger);
+    Embedding embedding = embed_once(out.surface, out.left_out, bounds, derived, options, stats, logger);
     Mesh& mesh = embedding.mesh;
     if (options.improve) improve(mesh, bounds, derived, options.tetrahedralize.max_passes, options, stats, logger);
     const std::size_t remaining = count_rational(mesh);
-    if (remaining == 0) return std::move(mesh);
+    if (remaining == 0) {
+      out.mesh = std::move(mesh);
+      return out;
+    }
+    if (attempt == kEmbeddingAttempts) {
+      throw RunError(std::to_string(remaining) + " cut points could not be rounded to doubles "
+                     "without inverting a tet; the mesh is not written");
+    }
+    if (spacing > 0 && kSnapCoarsening * spacing <= kMaxSnapFraction * derived.epsilon) {
+      spacing *= kSnapCoarsening;
+      logger.log(LogLevel::warning, std::to_string(remaining) + " cut points could not be rounded: "
+                 "inserting again with the surface snapped to a grid of " + std::to_string(spacing));
+      out.surface = snapped_surface(simplified, spacing, stats, logger);
+      continue;
+    }
     // Rational points are only ever made by insertion, so a rational
     // vertex still sits in the slot its creator gave it. A polygon's
     // triangles are left out together.
-    std::vector<char> stuck_creator(surface.triangles.size(), 0);
+    std::vector<char> stuck_creator(out.surface.triangles.size(), 0);
     for (Index v = 0; v < mesh.vertex_slots(); ++v) {
       if (!mesh.vertex_alive(v) || !mesh.position(v).is_exact() || v >= embedding.creator.size()) continue;
       const std::uint32_t creator = embedding.creator[v];
       if (creator != InsertionStats::kNoCreator) stuck_creator[creator] = 1;
     }
     std::size_t newly_skipped = 0;
-    for (std::size_t i = 0; i < left_out.size(); ++i) {
-      if (left_out[i] == 0 && stuck_creator[embedding.marked_as[i]] != 0) {
-        left_out[i] = 1;
+    for (std::size_t i = 0; i < out.left_out.size(); ++i) {
+      if (out.left_out[i] == 0 && stuck_creator[embedding.marked_as[i]] != 0) {
+        out.left_out[i] = 1;
         ++newly_skipped;
       }
     }
-    if (attempt == kEmbeddingAttempts || newly_skipped == 0) {
+    if (newly_skipped == 0) {
       throw RunError(std::to_string(remaining) + " cut points could not be rounded to doubles "
                      "without inverting a tet; the mesh is not written");
     }
@@ -300,13 +345,15 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
   result.parameters = derive_parameters(options.tetrahedralize, input);
   const DerivedParameters& derived = result.parameters;
   const TriangleSoup oriented = oriented_input(input, result.stats, logger);
-  const TriangleSoup surface = simplified_input(oriented, options, derived, result.stats, logger);
+  const TriangleSoup simplified = simplified_input(oriented, options, derived, result.stats, logger);
 
   const std::unique_ptr<envelope::Envelope> envelope = input_envelope(input, derived);
   const std::unique_ptr<envelope::Envelope> open_boundary = open_boundary_envelope(input, derived);
-  std::vector<char> left_out;
-  Mesh mesh = embed_and_improve(surface, {*envelope, open_boundary.get()}, derived, options, result.stats, logger,
-                                left_out);
+  EmbeddedSurface embedded =
+      embed_and_improve(simplified, {*envelope, open_boundary.get()}, derived, options, result.stats, logger);
+  Mesh& mesh = embedded.mesh;
+  const TriangleSoup& surface = embedded.surface;
+  const std::vector<char>& left_out = embedded.left_out;
 
   std::vector<char> keep;
   {

@@ -35,6 +35,11 @@ struct TetrahedralizeOptions {
   /// |w| > 1/2 by default: a model whose faces all point inward (a common
   /// export defect) is still a solid, where w > 1/2 would keep nothing.
   WindingRule winding_rule = WindingRule::absolute;
+  /// Grid the surface is snapped to before insertion, relative to epsilon
+  /// (rounded down to a power of two; 0: coordinates as they are). Noise
+  /// below it (float files, CAD exports) otherwise makes nearly coplanar
+  /// faces cut each other into points closer than doubles can hold.
+  double snap_fraction = 1e-3;
   /// Skip the input simplification stage.
   bool skip_simplify = false;
   /// Worker threads; 0 means all hardware threads.
@@ -51,6 +56,7 @@ struct DerivedParameters {
   double edge_length = 0.0;         ///< ell
   double lattice_spacing = 0.0;     ///< 0: no lattice
   double lattice_clearance = 0.0;   ///< delta
+  double snap_spacing = 0.0;        ///< a power of two; 0: no snapping
   /// Margin between the input's box and the background box: max(ell, 2 epsilon),
   /// as fTetWild (see derive_parameters).
   double box_margin = 0.0;
