@@ -301,4 +301,8 @@ TEST_CASE("tetrahedralize tool: bad input and bad usage exit 2 without output", 
   CHECK(not_volume.exit_code == 2);
   CHECK(!std::filesystem::exists(surface_out));
   CHECK(run_tetrahedralize({cube.string(), out.string(), "-e", "-1"}).exit_code == 2);
+  CHECK(run_tetrahedralize({cube.string(), out.string(), "--snap", "-1"}).exit_code == 2);
+  const test::ToolRun coarse_snap = run_tetrahedralize({cube.string(), out.string(), "--snap", "0.5"});
+  CHECK(coarse_snap.exit_code == 2);
+  CHECK(coarse_snap.err.find("snap fraction") != std::string::npos);
 }

@@ -68,7 +68,7 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        [&](const std::string&) { o.pipeline.filter = false; }},
       {"--snap", "", "F",
        "snap the input to a grid of F times epsilon (a power of two at most) before inserting it "
-       "(default 1e-3; 0: insert the coordinates as they are)",
+       "(default 1e-3, at most 0.01; 0: insert the coordinates as they are)",
        [&](const std::string& v) { t.snap_fraction = parse_double("--snap", v); }},
       {"--skip-simplify", "", "", "insert the input as it is, without simplifying it first",
        [&](const std::string&) { t.skip_simplify = true; }},

@@ -187,10 +187,10 @@ TriangleSoup snapped_surface(const TriangleSoup& surface, double spacing, Pipeli
 }
 
 // A retry after cut points got stuck snaps the surface to a grid this much
-// coarser, while the grid stays below kMaxSnapFraction of epsilon (one
+// coarser, while the grid stays below kMaxRetrySnapFraction of epsilon (one
 // step from the default); only then are triangles left out.
 constexpr double kSnapCoarsening = 16.0;
-constexpr double kMaxSnapFraction = 1.0 / 32.0;
+constexpr double kMaxRetrySnapFraction = 1.0 / 32.0;
 
 struct EmbeddedSurface {
   Mesh mesh;
@@ -227,7 +227,7 @@ EmbeddedSurface embed_and_improve(const TriangleSoup& simplified, const SurfaceB
       throw RunError(std::to_string(remaining) + " cut points could not be rounded to doubles "
                      "without inverting a tet; the mesh is not written");
     }
-    if (spacing > 0 && kSnapCoarsening * spacing <= kMaxSnapFraction * derived.epsilon) {
+    if (spacing > 0 && kSnapCoarsening * spacing <= kMaxRetrySnapFraction * derived.epsilon) {
       spacing *= kSnapCoarsening;
       logger.log(LogLevel::warning, std::to_string(remaining) + " cut points could not be rounded: "
                  "inserting again with the surface snapped to a grid of " + std::to_string(spacing));

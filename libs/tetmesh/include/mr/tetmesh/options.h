@@ -40,6 +40,8 @@ struct TetrahedralizeOptions {
   /// below it (float files, CAD exports) otherwise makes nearly coplanar
   /// faces cut each other into points closer than doubles can hold.
   double snap_fraction = 1e-3;
+  /// Largest snap_fraction accepted: the grid must stay far inside epsilon.
+  static constexpr double kMaxSnapFraction = 0.01;
   /// Skip the input simplification stage.
   bool skip_simplify = false;
   /// Worker threads; 0 means all hardware threads.
