@@ -95,8 +95,8 @@ std::vector<Case> broken_inputs() {
       // unembedded, within the grid of the input) unless snapping is off.
       {"sliver triangle", cube_with_sliver(1e-5), 1.0, area_eps, false, false},
       {"sliver triangle thinner than the snap grid", cube_with_sliver(1e-9), 1.0, area_eps},
-      {"sliver triangle thinner than the snap grid, not snapped", cube_with_sliver(1e-9), 1.0, area_eps, false,
-       false, 0.0},
+      {"sliver triangle thinner than the snap grid, not snapped", cube_with_sliver(1e-9), 1.0, area_eps,
+       false, false, 0.0},
       {"cube with a flipped face", flipped_face, 1.0, area_eps},
       {"cube with a folded fan", folded_fan, 1.0, area_eps, true},
       {"hollow cube (inward inner shell)", hollow, 26.0, 3e-3 * std::sqrt(3.0) * 60},
@@ -141,7 +141,8 @@ TEST_CASE("tetrahedralize: broken inputs give valid meshes of the expected volum
 
 // A count of a stage as --stats writes it: the last value given (a stage
 // that runs again, on a retry, counts again); -1 when absent.
-std::int64_t stage_count(const tetmesh::PipelineStats& stats, const std::string& stage, const std::string& key) {
+std::int64_t stage_count(const tetmesh::PipelineStats& stats, const std::string& stage,
+                         const std::string& key) {
   std::int64_t found = -1;
   for (const tetmesh::StageStats& s : stats.stages) {
     for (const auto& [name, value] : s.counts) {
@@ -151,7 +152,8 @@ std::int64_t stage_count(const tetmesh::PipelineStats& stats, const std::string&
   return found;
 }
 
-TEST_CASE("tetrahedralize: the surface is snapped to a grid below epsilon before insertion", "[tetrahedralize]") {
+TEST_CASE("tetrahedralize: the surface is snapped to a grid below epsilon before insertion",
+          "[tetrahedralize]") {
   tetmesh::PipelineOptions options;
   options.improve = false;
   const TriangleSoup input = cube_with_sliver(1e-9);

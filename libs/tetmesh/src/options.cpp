@@ -39,8 +39,9 @@ DerivedParameters derive_parameters(const TetrahedralizeOptions& options, const 
   // Simplification already uses 0.8 epsilon; snapping moves a vertex by up
   // to 0.87 of a grid step, and a retry may take a grid 16 times coarser.
   if (options.snap_fraction > TetrahedralizeOptions::kMaxSnapFraction) {
-    throw UsageError("the snap fraction must be at most " + std::to_string(TetrahedralizeOptions::kMaxSnapFraction) +
-                     " (of epsilon), got " + std::to_string(options.snap_fraction));
+    throw UsageError("the snap fraction must be at most " +
+                     std::to_string(TetrahedralizeOptions::kMaxSnapFraction) + " (of epsilon), got " +
+                     std::to_string(options.snap_fraction));
   }
   require_non_negative(options.stop_energy, "stop energy");
   if (options.max_passes < 0) throw UsageError("max passes must not be negative");

@@ -178,9 +178,7 @@ TriangleSoup snapped_surface(const TriangleSoup& surface, double spacing, Pipeli
   StageTimer timer(stats, "snap", logger);
   TriangleSoup snapped = surface;
   if (spacing > 0) {
-    int exponent = 0;
-    std::frexp(spacing, &exponent);
-    timer.stage().count("grid_log2", exponent - 1);
+    timer.stage().count("grid_log2", std::ilogb(spacing));
     count(timer, "moved_vertices", snap_to_grid(snapped, spacing));
   }
   return snapped;
@@ -191,6 +189,28 @@ TriangleSoup snapped_surface(const TriangleSoup& surface, double spacing, Pipeli
 // step from the default); only then are triangles left out.
 constexpr double kSnapCoarsening = 16.0;
 constexpr double kMaxRetrySnapFraction = 1.0 / 32.0;
+
+// Marks as left out the triangles (whole polygons) whose cut points are
+// still rational; returns how many were not marked before. Rational points
+// are only ever made by insertion, so a rational vertex still sits in the
+// slot its creator gave it.
+std::size_t leave_out_stuck_creators(const Embedding& embedding, std::vector<char>& left_out) {
+  const Mesh& mesh = embedding.mesh;
+  std::vector<char> stuck_creator(left_out.size(), 0);
+  for (Index v = 0; v < mesh.vertex_slots(); ++v) {
+    if (!mesh.vertex_alive(v) || !mesh.position(v).is_exact() || v >= embedding.creator.size()) continue;
+    const std::uint32_t creator = embedding.creator[v];
+    if (creator != InsertionStats::kNoCreator) stuck_creator[creator] = 1;
+  }
+  std::size_t newly_left_out = 0;
+  for (std::size_t i = 0; i < left_out.size(); ++i) {
+    if (left_out[i] == 0 && stuck_creator[embedding.marked_as[i]] != 0) {
+      left_out[i] = 1;
+      ++newly_left_out;
+    }
+  }
+  return newly_left_out;
+}
 
 struct EmbeddedSurface {
   Mesh mesh;
@@ -223,39 +243,23 @@ EmbeddedSurface embed_and_improve(const TriangleSoup& simplified, const SurfaceB
       out.mesh = std::move(mesh);
       return out;
     }
-    if (attempt == kEmbeddingAttempts) {
+    const bool coarsen = spacing > 0 && kSnapCoarsening * spacing <= kMaxRetrySnapFraction * derived.epsilon;
+    const std::size_t newly_left_out = coarsen ? 0 : leave_out_stuck_creators(embedding, out.left_out);
+    if (attempt == kEmbeddingAttempts || (!coarsen && newly_left_out == 0)) {
       throw RunError(std::to_string(remaining) + " cut points could not be rounded to doubles "
                      "without inverting a tet; the mesh is not written");
     }
-    if (spacing > 0 && kSnapCoarsening * spacing <= kMaxRetrySnapFraction * derived.epsilon) {
+    const std::string stuck =
+        std::to_string(remaining) + " cut points could not be rounded: inserting again ";
+    if (coarsen) {
       spacing *= kSnapCoarsening;
-      logger.log(LogLevel::warning, std::to_string(remaining) + " cut points could not be rounded: "
-                 "inserting again with the surface snapped to a grid of " + std::to_string(spacing));
+      logger.log(LogLevel::warning,
+                 stuck + "with the surface snapped to a grid of 2^" + std::to_string(std::ilogb(spacing)));
       out.surface = snapped_surface(simplified, spacing, stats, logger);
-      continue;
+    } else {
+      logger.log(LogLevel::warning,
+                 stuck + "without the " + std::to_string(newly_left_out) + " triangles that made them");
     }
-    // Rational points are only ever made by insertion, so a rational
-    // vertex still sits in the slot its creator gave it. A polygon's
-    // triangles are left out together.
-    std::vector<char> stuck_creator(out.surface.triangles.size(), 0);
-    for (Index v = 0; v < mesh.vertex_slots(); ++v) {
-      if (!mesh.vertex_alive(v) || !mesh.position(v).is_exact() || v >= embedding.creator.size()) continue;
-      const std::uint32_t creator = embedding.creator[v];
-      if (creator != InsertionStats::kNoCreator) stuck_creator[creator] = 1;
-    }
-    std::size_t newly_skipped = 0;
-    for (std::size_t i = 0; i < out.left_out.size(); ++i) {
-      if (out.left_out[i] == 0 && stuck_creator[embedding.marked_as[i]] != 0) {
-        out.left_out[i] = 1;
-        ++newly_skipped;
-      }
-    }
-    if (newly_skipped == 0) {
-      throw RunError(std::to_string(remaining) + " cut points could not be rounded to doubles "
-                     "without inverting a tet; the mesh is not written");
-    }
-    logger.log(LogLevel::warning, std::to_string(remaining) + " cut points could not be rounded: "
-               "inserting again without the " + std::to_string(newly_skipped) + " triangles that made them");
   }
 }
 
