@@ -1,13 +1,17 @@
 #include "meshrepair.h"
 #include "repair_stats.h"
 
+#include <mr/check/written_file.h>
 #include <mr/cli/run_tool.h>
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
 #include <mr/repair/repair.h>
 #include <mr/tetmesh/tetrahedralize.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <optional>
 #include <ostream>
 
 namespace mr::tools {
@@ -24,6 +28,8 @@ tetmesh::TetrahedralizeOptions repair_defaults() {
 
 struct ToolOptions {
   tetmesh::TetrahedralizeOptions tetrahedralize = repair_defaults();
+  io::WriteOptions write;
+  std::optional<int> draco_position_bits;  ///< unset: chosen from epsilon
   bool cleanup = true;
   std::string stats_path;
   bool quiet = false;
@@ -60,6 +66,13 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        [&](const std::string&) { t.skip_simplify = true; }},
       {"--no-cleanup", "", "", "keep the peeled surface as it is (no collapses or flips)",
        [&](const std::string&) { o.cleanup = false; }},
+      {"--draco", "", "", "compress GLB/glTF output with KHR_draco_mesh_compression (.drc is always Draco)",
+       [&](const std::string&) { o.write.draco.compress_gltf = true; }},
+      {"--draco-position-bits", "", "N",
+       "Draco position quantization bits (default: a grid step of at most epsilon/64, 12 to 30 bits)",
+       [&](const std::string& v) { o.draco_position_bits = cli::parse_int("--draco-position-bits", v, 1, 30); }},
+      {"--ascii", "", "", "ASCII instead of binary where the format has both (STL, PLY)",
+       [&](const std::string&) { o.write.binary = false; }},
       {"--stats", "", "FILE",
        "write input defects, output figures (faces, genus, volume, Hausdorff distances both ways) "
        "and seconds per stage as JSON",
@@ -86,6 +99,28 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The fewest Draco position bits (at least 12) whose grid step over `extent`
+// is at most epsilon / 64: rounding then moves the surface by far less than epsilon.
+int position_bits_for(double extent, double epsilon) {
+  for (int bits = 12; bits < 30; ++bits)
+    if (extent / double((std::int64_t{1} << bits) - 1) <= epsilon / 64.0) return bits;
+  return 30;
+}
+
+// The grid the output file stores positions on, for a surface inside [lo, hi];
+// Draco's quantization is fixed here, and the writer is told to use it.
+std::function<CoordinateGrid(const Vec3d&, const Vec3d&)> output_grid(const io::Registry& registry,
+                                                                     const std::string& path, double epsilon,
+                                                                     const ToolOptions& options,
+                                                                     io::WriteOptions& write) {
+  return [&registry, path, epsilon, &options, &write](const Vec3d& lo, const Vec3d& hi) {
+    write.draco.position_bits = options.draco_position_bits.value_or(position_bits_for((hi - lo).maxCoeff(), epsilon));
+    CoordinateGrid grid = io::surface_position_grid(registry, path, write, lo, hi);
+    if (grid.kind() == CoordinateGrid::Kind::quantized) write.draco.position_grid = grid.quantization();
+    return grid;
+  };
+}
+
 void run(const ToolOptions& options, const std::vector<std::string>& files, std::ostream& out, std::ostream& err) {
   const io::Registry registry = io::make_default_registry();
   auto start = std::chrono::steady_clock::now();
@@ -106,6 +141,8 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   repair_options.epsilon = pipeline.parameters.epsilon;
   repair_options.threads = options.tetrahedralize.threads;
   repair_options.cleanup = options.cleanup;
+  io::WriteOptions write_options = options.write;
+  repair_options.output_grid = output_grid(registry, files[1], pipeline.parameters.epsilon, options, write_options);
   std::vector<std::uint8_t> inside(pipeline.mesh.tet_labels.begin(), pipeline.mesh.tet_labels.end());
   const repair::RepairResult repaired = repair::repair_surface_from_tets(pipeline.mesh, inside, input, repair_options);
   if (options.verbose && !options.quiet) {
@@ -114,11 +151,13 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   }
 
   start = std::chrono::steady_clock::now();
-  io::write_surface(registry, repaired.surface, files[1]);
-  const double seconds_write = seconds_since(start);
+  check::WrittenFileReport written;
+  io::write_surface(registry, repaired.surface, files[1], write_options,
+                    check::watertight_file_check(registry, files[1], &written));
+  const double seconds_write = seconds_since(start) - written.seconds;
   if (!options.stats_path.empty())
     cli::write_stats_file(options.stats_path,
-                          make_repair_stats({input, pipeline, repaired, seconds_read, seconds_write}).dump(2));
+                          make_repair_stats({input, pipeline, repaired, written, seconds_read, seconds_write}).dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << repaired.surface.triangles.size()
         << " faces, watertight (" << repaired.manifold.nonmanifold_edges_found + repaired.manifold.nonmanifold_vertices_found

@@ -53,6 +53,17 @@ nlohmann::json output_figures(const RepairRun& run) {
           {"mean_distance_input_to_output", from_input.mean}};
 }
 
+// The file as written, read back (float32 or quantized positions).
+nlohmann::json written_figures(const check::SurfaceReport& r) {
+  return {{"faces", r.faces},
+          {"vertices", r.vertices},
+          {"watertight", r.watertight()},
+          {"nonmanifold_edges", r.nonmanifold_edges},
+          {"nonmanifold_vertices", r.nonmanifold_vertices},
+          {"self_intersecting_pairs", r.self_intersecting_pairs},
+          {"degenerate_faces", r.degenerate_faces}};
+}
+
 nlohmann::json repair_figures(const repair::RepairResult& r) {
   return {{"nonmanifold_edges_found", r.manifold.nonmanifold_edges_found},
           {"nonmanifold_vertices_found", r.manifold.nonmanifold_vertices_found},
@@ -64,7 +75,12 @@ nlohmann::json repair_figures(const repair::RepairResult& r) {
           {"manifold_rounds", r.manifold.rounds},
           {"peeled_faces", r.peeled_faces},
           {"collapses", r.collapses},
-          {"flips", r.flips}};
+          {"flips", r.flips},
+          {"output_grid", r.grid.name()},
+          {"rounded_vertices", r.rounding.moved},
+          {"rounded_off_nearest", r.rounding.nearest_refused},
+          {"rounding_passes", r.rounding.passes},
+          {"rounding_max_move", r.rounding.max_move}};
 }
 
 nlohmann::json stage_seconds(const RepairRun& run) {
@@ -77,6 +93,7 @@ nlohmann::json stage_seconds(const RepairRun& run) {
   }
   for (const repair::StageTime& s : run.repair.stages) stages.push_back({{"name", s.name}, {"seconds", s.seconds}});
   stages.push_back({{"name", "write"}, {"seconds", run.seconds_write}});
+  stages.push_back({{"name", "check_written"}, {"seconds", run.written.seconds}});
   return stages;
 }
 
@@ -91,6 +108,7 @@ nlohmann::json make_repair_stats(const RepairRun& run) {
                                                    run.pipeline.mesh.tet_labels.end(), 1)},
                           {"repair", repair_figures(run.repair)},
                           {"output", output_figures(run)},
+                          {"written_file", written_figures(run.written.surface)},
                           {"stages", stage_seconds(run)}};
   stats["seconds_measuring"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;

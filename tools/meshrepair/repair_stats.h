@@ -2,6 +2,7 @@
 // The --stats JSON of meshrepair: defects of the input, figures of the
 // output (measured independently with mr::check), and time per stage.
 
+#include <mr/check/written_file.h>
 #include <mr/core/triangle_soup.h>
 #include <mr/repair/repair.h>
 #include <mr/tetmesh/tetrahedralize.h>
@@ -14,6 +15,7 @@ struct RepairRun {
   const TriangleSoup& input;
   const tetmesh::PipelineResult& pipeline;
   const repair::RepairResult& repair;
+  const check::WrittenFileReport& written;
   double seconds_read = 0.0;
   double seconds_write = 0.0;
 };

@@ -109,6 +109,26 @@ double signed_volume(const detail::Welded& mesh) {
 
 }  // namespace
 
+std::string watertight_failures(const SurfaceReport& r) {
+  std::string out;
+  const auto add = [&](std::size_t count, const char* one, const char* many) {
+    if (count == 0) return;
+    if (!out.empty()) out += ", ";
+    out += std::to_string(count) + " " + (count == 1 ? one : many);
+  };
+  add(r.boundary_edges, "boundary edge", "boundary edges");
+  add(r.nonmanifold_edges, "non-manifold edge", "non-manifold edges");
+  add(r.nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices");
+  add(r.inconsistent_edges, "inconsistently oriented edge", "inconsistently oriented edges");
+  add(r.degenerate_faces, "degenerate face", "degenerate faces");
+  if (r.self_intersecting_pairs > 0)
+    add(static_cast<std::size_t>(r.self_intersecting_pairs), "self-intersecting face pair",
+        "self-intersecting face pairs");
+  if (r.self_intersecting_pairs < 0) out += std::string(out.empty() ? "" : ", ") + "self-intersections not checked";
+  if (out.empty() && !(r.volume > 0)) out = "not oriented outward (enclosed volume " + std::to_string(r.volume) + ")";
+  return out;
+}
+
 SurfaceReport check_surface(const TriangleSoup& soup, const SurfaceCheckOptions& options) {
   const detail::Welded welded = detail::weld_identical(soup);
   SurfaceReport report;

@@ -54,14 +54,33 @@ TriangleSoup read_surface(const Registry& registry, const std::filesystem::path&
   return soup;
 }
 
-void write_surface(const Registry& registry, const TriangleSoup& soup, const std::filesystem::path& path,
-                   const WriteOptions& options) {
+namespace {
+
+const Format& surface_format_for_write(const Registry& registry, const std::filesystem::path& path,
+                                       const WriteOptions& options) {
   const Format& format = registry.resolve_for_write(path, options.format);
   if (!format.write_surface) throw UsageError("format " + format.name + " holds volume meshes, not surfaces");
+  return format;
+}
+
+}  // namespace
+
+CoordinateGrid surface_position_grid(const Registry& registry, const std::filesystem::path& path,
+                                     const WriteOptions& options, const Vec3d& lo, const Vec3d& hi) {
+  const Format& format = surface_format_for_write(registry, path, options);
+  return format.position_grid ? format.position_grid(options, lo, hi) : CoordinateGrid::doubles();
+}
+
+void write_surface(const Registry& registry, const TriangleSoup& soup, const std::filesystem::path& path,
+                   const WriteOptions& options, const WrittenFileCheck& check) {
+  const Format& format = surface_format_for_write(registry, path, options);
   if (std::string problem = find_soup_inconsistency(soup); !problem.empty())
     throw RunError("refusing to write an inconsistent mesh to " + path.string() + ": " + problem);
   check_output_path(path);
-  write_atomically(path, [&](const std::filesystem::path& temp) { format.write_surface(soup, temp, options); });
+  write_atomically(path, [&](const std::filesystem::path& temp) {
+    format.write_surface(soup, temp, options);
+    if (check) check(temp);
+  });
 }
 
 void write_volume(const Registry& registry, const TetMesh& mesh, const std::filesystem::path& path,

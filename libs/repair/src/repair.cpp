@@ -31,6 +31,16 @@ bool is_closed(const TriangleSoup& input) {
   return detail::find_boundary_defects(weld_identical_vertices(input).triangles).boundary_edges == 0;
 }
 
+std::pair<Vec3d, Vec3d> bounds_of(const TriangleSoup& soup) {
+  Vec3d lo = Vec3d::Zero(), hi = Vec3d::Zero();
+  if (!soup.positions.empty()) lo = hi = soup.positions.front();
+  for (const Vec3d& p : soup.positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return {lo, hi};
+}
+
 class StageClock {
  public:
   StageClock(RepairResult& result, std::string name)
@@ -107,6 +117,12 @@ RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::
   if (options.cleanup && !input.triangles.empty()) {
     StageClock clock(result, "cleanup");
     result.surface = clean_up(result.surface, input, options, result);
+  }
+  if (options.output_grid) {
+    StageClock clock(result, "round");
+    const auto [lo, hi] = bounds_of(result.surface);
+    result.grid = options.output_grid(lo, hi);
+    result.rounding = round_to_grid(result.surface, result.grid, options.rounding);
   }
   if (!detail::find_boundary_defects(result.surface.triangles).closed_manifold())
     throw RunError("repair: internal error: the repaired surface is not a closed manifold");

@@ -13,11 +13,6 @@
 namespace mr::simplify {
 namespace {
 
-bool exactly_collinear(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-  return orient2d_projected(a, b, c, 0) == 0 && orient2d_projected(a, b, c, 1) == 0 &&
-         orient2d_projected(a, b, c, 2) == 0;
-}
-
 Vec3d normal_of(const Corners& c) { return (c[1] - c[0]).cross(c[2] - c[0]); }
 
 double smallest_angle(const Corners& c) {
@@ -55,7 +50,7 @@ int dominant_axis(const Vec3d& normal) {
 bool new_faces_within_old(const std::vector<Corners>& old_faces, const std::vector<Corners>& new_faces) {
   const Corners* reference = nullptr;
   for (const Corners& c : old_faces)
-    if (!exactly_collinear(c[0], c[1], c[2])) {
+    if (!collinear(c[0], c[1], c[2])) {
       reference = &c;
       break;
     }
@@ -151,7 +146,7 @@ bool MeshState::shapes_acceptable(const std::vector<NewFace>& faces) const {
   const double cos_max = tolerances_.cos_max_normal_deviation;
   for (const NewFace& face : faces) {
     const Corners& c = face.corners;
-    if (exactly_collinear(c[0], c[1], c[2])) return false;
+    if (collinear(c[0], c[1], c[2])) return false;
     const Vec3d n = normal_of(c);
     const double old_length = face.old_normal.norm();
     if (old_length > 0.0 && !(n.dot(face.old_normal) >= cos_max * n.norm() * old_length)) return false;
@@ -197,7 +192,7 @@ bool MeshState::collapse_stays_in_plane(TriMesh::HalfedgeHandle h, const std::ve
   if (mesh_.is_boundary(v0)) {
     const auto out = mesh_.halfedge_handle(v0);
     const auto in = mesh_.prev_halfedge_handle(out);
-    if (!exactly_collinear(point(mesh_.from_vertex_handle(in)), point(v0), point(mesh_.to_vertex_handle(out))))
+    if (!collinear(point(mesh_.from_vertex_handle(in)), point(v0), point(mesh_.to_vertex_handle(out))))
       return false;
   }
   std::vector<Corners> old_faces;
@@ -236,7 +231,7 @@ bool MeshState::faces_apart(const std::vector<NewFace>& faces, const std::vector
         if (mesh_.status(f).deleted() || replaced(f)) continue;
         b = corners(f);
       }
-      if (exactly_collinear(b[0], b[1], b[2])) continue;  // as check_surface: degenerate faces are not counted
+      if (collinear(b[0], b[1], b[2])) continue;  // as check_surface: degenerate faces are not counted
       if (crosses(a, b)) crossed.emplace_back(id, b);
     }
   }
@@ -247,7 +242,7 @@ bool MeshState::faces_apart(const std::vector<NewFace>& faces, const std::vector
     const Corners& b = crossed[i].second;
     const auto crossed_before = static_cast<std::size_t>(
         std::count_if(old_faces.begin(), old_faces.end(), [&](const Corners& old) {
-          return !exactly_collinear(old[0], old[1], old[2]) && crosses(old, b);
+          return !collinear(old[0], old[1], old[2]) && crosses(old, b);
         }));
     if (j - i > crossed_before) return false;
     i = j;

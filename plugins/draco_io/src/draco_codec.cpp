@@ -149,7 +149,10 @@ EncodeResult run_encoder(const BuiltMesh& built, const io::DracoOptions& options
   draco::ExpertEncoder encoder(built.mesh);
   encoder.SetTrackEncodedProperties(true);
   encoder.SetSpeedOptions(options.speed, options.speed);
-  encoder.SetAttributeQuantization(built.position, options.position_bits);
+  if (const auto& grid = options.position_grid)
+    encoder.SetAttributeExplicitQuantization(built.position, grid->bits, 3, grid->origin.data(), grid->range);
+  else
+    encoder.SetAttributeQuantization(built.position, options.position_bits);
   if (built.normal >= 0) encoder.SetAttributeQuantization(built.normal, options.normal_bits);
   if (built.uv >= 0) encoder.SetAttributeQuantization(built.uv, options.uv_bits);
   if (built.color >= 0) encoder.SetAttributeQuantization(built.color, options.color_bits);

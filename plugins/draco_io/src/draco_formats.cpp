@@ -32,6 +32,9 @@ void register_draco_formats(io::Registry& registry) {
                     "positions quantized, see --draco-position-bits)";
   drc.read_surface = read_drc;
   drc.write_surface = write_drc;
+  drc.position_grid = [](const io::WriteOptions& options, const Vec3d& lo, const Vec3d& hi) {
+    return io::draco_position_grid(options.draco, lo, hi);
+  };
   registry.add(std::move(drc));
 }
 

@@ -17,6 +17,10 @@ void register_gltf_formats(io::Registry& registry) {
     };
     format.write_surface = [glb](const TriangleSoup& soup, const std::filesystem::path& path,
                                  const io::WriteOptions& options) { gltf::write_gltf(soup, path, options, glb); };
+    // Positions are float32 accessors, or Draco's grid with --draco.
+    format.position_grid = [](const io::WriteOptions& options, const Vec3d& lo, const Vec3d& hi) {
+      return options.draco.compress_gltf ? io::draco_position_grid(options.draco, lo, hi) : CoordinateGrid::float32();
+    };
     registry.add(std::move(format));
   };
   add("gltf", ".gltf", "glTF 2.0 JSON (buffer embedded as base64; reads external .bin too; --draco)", false);

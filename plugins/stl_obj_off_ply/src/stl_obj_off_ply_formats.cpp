@@ -32,6 +32,7 @@ void register_stl_obj_off_ply_formats(io::Registry& registry) {
   stl.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path, const io::WriteOptions& options) {
     write_stl(soup, path, options.binary);
   };
+  stl.position_grid = [](const io::WriteOptions&, const Vec3d&, const Vec3d&) { return CoordinateGrid::float32(); };
   registry.add(std::move(stl));
 
   io::Format obj = surface_format("obj", ".obj", "Wavefront OBJ with normals, uvs and usemtl regions");

@@ -6,6 +6,7 @@
 #include <mr/core/triangle_soup.h>
 
 #include <cstdint>
+#include <string>
 
 namespace mr::check {
 
@@ -37,5 +38,9 @@ struct SurfaceCheckOptions {
 };
 
 SurfaceReport check_surface(const TriangleSoup& soup, const SurfaceCheckOptions& options = {});
+
+/// What keeps a report from being watertight, e.g. "3 self-intersecting face
+/// pairs, 1 non-manifold vertex"; empty when it is watertight.
+std::string watertight_failures(const SurfaceReport& report);
 
 }  // namespace mr::check

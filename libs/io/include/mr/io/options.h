@@ -2,6 +2,9 @@
 // Options for reading and writing meshes. User inputs only, with defaults;
 // each plugin reads the part that concerns it.
 
+#include <mr/core/coordinate_grid.h>
+
+#include <optional>
 #include <string>
 
 namespace mr::io {
@@ -33,8 +36,18 @@ struct DracoOptions {
   int uv_bits = 12;
   int color_bits = 8;
   int speed = 3;  ///< 0 = smallest output, 10 = fastest
+  /// Explicit position quantization (origin, range and bits; overrides
+  /// position_bits). Unset: Draco derives it from the positions' bounds.
+  /// A writer that rounds positions onto a grid first sets the grid's own.
+  std::optional<CoordinateGrid::Quantization> position_grid;
 };
 
+/// The grid Draco stores positions inside [lo, hi] on: options.position_grid
+/// if set, else position_bits over that box.
+inline CoordinateGrid draco_position_grid(const DracoOptions& options, const Vec3d& lo, const Vec3d& hi) {
+  return options.position_grid ? CoordinateGrid::quantized(*options.position_grid)
+                               : CoordinateGrid::quantized_over(lo, hi, options.position_bits);
+}
 
 struct WriteOptions {
   /// Format name overriding the file extension; "" = by extension.

@@ -3,6 +3,7 @@
 // core picks a format by file extension or by an explicit name. There is no
 // global registry: callers build one (see mr/io/default_registry.h).
 
+#include <mr/core/coordinate_grid.h>
 #include <mr/core/tet_mesh.h>
 #include <mr/core/triangle_soup.h>
 #include <mr/io/options.h>
@@ -33,6 +34,11 @@ struct Format {
   std::function<TetMesh(const std::filesystem::path&, const ReadOptions&)> read_volume;
   std::function<void(const TetMesh&, const std::filesystem::path&, const WriteOptions&)>
       write_volume;
+
+  /// The grid this format stores surface positions on when written with
+  /// `options`, for positions inside [lo, hi]. Empty: every double is stored
+  /// exactly (the default).
+  std::function<CoordinateGrid(const WriteOptions&, const Vec3d& lo, const Vec3d& hi)> position_grid;
 
   bool can_read() const { return read_surface || read_volume; }
   bool can_write() const { return write_surface || write_volume; }

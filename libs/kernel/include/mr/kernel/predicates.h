@@ -39,4 +39,10 @@ int insphere(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d, con
 /// increasing order, e.g. axis 0 keeps (y, z).
 int orient2d_projected(const Vec3d& a, const Vec3d& b, const Vec3d& c, int axis);
 
+/// True if a, b and c lie on one line (or coincide), exactly.
+inline bool collinear(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  return orient2d_projected(a, b, c, 0) == 0 && orient2d_projected(a, b, c, 1) == 0 &&
+         orient2d_projected(a, b, c, 2) == 0;
+}
+
 }  // namespace mr

@@ -6,13 +6,17 @@
 //   2. peel: the boundary of the tets, oriented outward;
 //   3. clean-up: edge collapses and flips inside the envelope of the
 //      ORIGINAL input, vetoing any that leaves it or creates a
-//      self-intersection (mr::simplify::simplify_in_envelope_of).
+//      self-intersection (mr::simplify::simplify_in_envelope_of);
+//   4. rounding: every vertex onto the grid the output format stores
+//      (float32, Draco's quantization), exactly checked (round_to_grid.h).
 
 #include <mr/core/tet_mesh.h>
 #include <mr/core/triangle_soup.h>
 #include <mr/repair/manifold_fix.h>
+#include <mr/repair/round_to_grid.h>
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -28,6 +32,10 @@ struct RepairOptions {
   bool cleanup = true;
   /// Upper bound on the rounds of the manifold fix.
   int max_manifold_rounds = 32;
+  /// The grid the output file stores positions on, for a surface inside
+  /// [lo, hi] (e.g. mr::io::surface_position_grid). Empty: doubles, no rounding.
+  std::function<CoordinateGrid(const Vec3d& lo, const Vec3d& hi)> output_grid;
+  GridRoundingOptions rounding;
 };
 
 struct StageTime {
@@ -43,7 +51,10 @@ struct RepairResult {
   std::size_t peeled_faces = 0;   ///< faces of the boundary before the clean-up
   std::size_t collapses = 0;
   std::size_t flips = 0;
-  std::vector<StageTime> stages;  ///< "manifold", "peel", "cleanup", in order
+  /// The grid the surface's positions lie on (the writer must use it).
+  CoordinateGrid grid = CoordinateGrid::doubles();
+  GridRoundingStats rounding;
+  std::vector<StageTime> stages;  ///< "manifold", "peel", "cleanup", "round", in order
 };
 
 /// Repairs the boundary of the solid made of the tets of `mesh` flagged in

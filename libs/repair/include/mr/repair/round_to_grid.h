@@ -1,0 +1,48 @@
+#pragma once
+// The last stage of a repair: move every vertex onto the grid the output
+// format stores (float32 for STL and GLB, Draco's quantization grid), so
+// that the written file, not only the doubles it came from, is watertight.
+// Rounding each coordinate on its own can make faces cross where two sheets
+// nearly touch, collapse a sliver, or put two vertices on one grid point
+// (which a reader welds into a non-manifold vertex). Here each vertex moves
+// to the nearest grid point where none of that happens, decided exactly on
+// the rounded coordinates; where the nearest is refused, the grid points
+// around it are tried, nearest first.
+
+#include <mr/core/coordinate_grid.h>
+#include <mr/core/triangle_soup.h>
+
+#include <cstddef>
+
+namespace mr::repair {
+
+struct GridRoundingOptions {
+  /// How far the search goes when the nearest grid point is refused: grid
+  /// points up to this many steps from it along each axis.
+  int max_steps = 4;
+  /// Sweeps over the vertices not yet placed (a refused vertex may fit once
+  /// its neighbours have moved).
+  int max_passes = 8;
+};
+
+struct GridRoundingStats {
+  std::size_t vertices = 0;
+  std::size_t moved = 0;            ///< vertices that were not on the grid
+  std::size_t nearest_refused = 0;  ///< vertices placed on a grid point other than the nearest
+  int passes = 0;
+  double max_move = 0.0;            ///< largest distance a vertex moved
+};
+
+/// Moves every vertex of `surface` onto `grid`. Precondition: the surface is
+/// welded by index, no two vertices share a position, no face is degenerate
+/// and no two faces meet except in the vertices and edges they share. All of
+/// this still holds afterwards, exactly, on the grid coordinates: a vertex
+/// goes to the nearest grid point where none of its faces becomes degenerate
+/// or meets another face improperly and no other vertex sits, else to the
+/// nearest such grid point within options.max_steps steps. Vertices are
+/// placed in index order, so the result is deterministic. Throws mr::RunError
+/// naming the count of vertices that found no place.
+GridRoundingStats round_to_grid(TriangleSoup& surface, const CoordinateGrid& grid,
+                                const GridRoundingOptions& options = {});
+
+}  // namespace mr::repair

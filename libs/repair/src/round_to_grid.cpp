@@ -1,0 +1,270 @@
+#include <mr/repair/round_to_grid.h>
+
+#include <mr/core/errors.h>
+#include <mr/kernel/intersections.h>
+#include <mr/kernel/predicates.h>
+#include <mr/spatial/box_grid.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <limits>
+#include <span>
+#include <cmath>
+#include <tuple>
+#include <unordered_map>
+#include <vector>
+
+namespace mr::repair {
+namespace {
+
+struct Box {
+  Vec3d lo = Vec3d::Constant(std::numeric_limits<double>::infinity());
+  Vec3d hi = Vec3d::Constant(-std::numeric_limits<double>::infinity());
+  void add(const Vec3d& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  void add(const Box& b) {
+    lo = lo.cwiseMin(b.lo);
+    hi = hi.cwiseMax(b.hi);
+  }
+  bool overlaps(const Box& b) const { return (lo.array() <= b.hi.array()).all() && (b.lo.array() <= hi.array()).all(); }
+};
+
+// Positions equal as doubles (0.0 and -0.0 alike) get one key: a reader welds them.
+struct PositionHash {
+  std::size_t operator()(const Vec3d& p) const {
+    std::size_t h = 0;
+    for (int k = 0; k < 3; ++k) h = h * 0x9E3779B97F4A7C15ull + std::bit_cast<std::uint64_t>(p[k] + 0.0);
+    return h;
+  }
+};
+struct PositionEqual {
+  bool operator()(const Vec3d& a, const Vec3d& b) const { return a == b; }
+};
+
+// Vertex-to-face incidence in one array (faces of v: faces[first[v] .. first[v + 1])).
+struct Incidence {
+  std::vector<std::size_t> first;
+  std::vector<Index> faces;
+};
+
+Incidence incidence_of(const TriangleSoup& surface) {
+  Incidence incidence;
+  incidence.first.assign(surface.positions.size() + 1, 0);
+  for (const Triangle& t : surface.triangles)
+    for (Index v : t) ++incidence.first[v + 1];
+  for (std::size_t v = 0; v < surface.positions.size(); ++v) incidence.first[v + 1] += incidence.first[v];
+  incidence.faces.resize(incidence.first.back());
+  std::vector<std::size_t> next(incidence.first.begin(), incidence.first.end() - 1);
+  for (std::size_t f = 0; f < surface.triangles.size(); ++f)
+    for (Index v : surface.triangles[f]) incidence.faces[next[v]++] = static_cast<Index>(f);
+  return incidence;
+}
+
+class GridRounding {
+ public:
+  GridRounding(TriangleSoup& surface, const CoordinateGrid& grid, const GridRoundingOptions& options)
+      : surface_(surface), grid_(grid), options_(options), original_(surface.positions),
+        incidence_(incidence_of(surface)), on_grid_(surface.positions.size(), 0) {
+    for (std::size_t v = 0; v < original_.size(); ++v) occupied_.emplace(original_[v], static_cast<Index>(v));
+    build_reach();
+  }
+
+  GridRoundingStats run() {
+    GridRoundingStats stats;
+    stats.vertices = original_.size();
+    for (std::size_t v = 0; v < original_.size(); ++v) {
+      if (grid_.holds(original_[v])) on_grid_[v] = 1;
+      else ++stats.moved;
+    }
+    std::vector<Index> left = unplaced();
+    // First sweep: the nearest grid point only, so that a vertex refused
+    // because a neighbour has not moved yet is tried again after it did.
+    for (bool search = false; !left.empty() && stats.passes < options_.max_passes; search = true) {
+      ++stats.passes;
+      for (Index v : left) place(v, search, stats);
+      const std::vector<Index> still = unplaced();
+      if (search && still.size() == left.size()) break;
+      left = still;
+    }
+    if (!left.empty())
+      throw RunError("cannot place " + std::to_string(left.size()) + " vertices on the " + grid_.name() +
+                     " grid of the output without a self-intersection, a degenerate face or two vertices on "
+                     "one point (searched " + std::to_string(options_.max_steps) + " grid steps around each)");
+    return stats;
+  }
+
+ private:
+  std::vector<Index> unplaced() const {
+    std::vector<Index> out;
+    for (std::size_t v = 0; v < on_grid_.size(); ++v)
+      if (!on_grid_[v]) out.push_back(static_cast<Index>(v));
+    return out;
+  }
+
+  // Every box a vertex can be in during the stage (its position and the grid
+  // points it may try), and per face the union of its vertices': two faces
+  // can only come to meet if these overlap.
+  void build_reach() {
+    vertex_reach_.resize(original_.size());
+    Box all;
+    double total_size = 0.0;
+    for (std::size_t v = 0; v < original_.size(); ++v) {
+      Box& b = vertex_reach_[v];
+      b.add(original_[v]);
+      const Vec3d n = grid_.nearest(original_[v]);
+      for (int axis = 0; axis < 3; ++axis) {
+        b.lo[axis] = std::min(b.lo[axis], grid_.step(axis, n[axis], -options_.max_steps));
+        b.hi[axis] = std::max(b.hi[axis], grid_.step(axis, n[axis], options_.max_steps));
+      }
+      all.add(b);
+    }
+    face_reach_.resize(surface_.triangles.size());
+    for (std::size_t f = 0; f < surface_.triangles.size(); ++f) {
+      for (Index v : surface_.triangles[f]) face_reach_[f].add(vertex_reach_[v]);
+      total_size += (face_reach_[f].hi - face_reach_[f].lo).maxCoeff();
+    }
+    if (face_reach_.empty()) return;
+    const double mean = total_size / double(face_reach_.size());
+    const double cell = std::max({2.0 * mean, (all.hi - all.lo).maxCoeff() / 2000.0, 1e-300});
+    faces_ = spatial::BoxGrid(all.lo - Vec3d::Constant(cell), cell);
+    for (std::size_t f = 0; f < face_reach_.size(); ++f)
+      faces_.insert(static_cast<std::uint32_t>(f), face_reach_[f].lo, face_reach_[f].hi);
+  }
+
+  std::span<const Index> faces_around(Index v) const {
+    return {incidence_.faces.data() + incidence_.first[v], incidence_.first[v + 1] - incidence_.first[v]};
+  }
+
+  void place(Index v, bool search, GridRoundingStats& stats) {
+    const std::vector<Index> nearby = faces_near(v);
+    const Vec3d nearest = grid_.nearest(original_[v]);
+    bool placed = try_position(v, nearest, nearby);
+    if (!placed && search) {
+      for (const Vec3d& c : ring_candidates(v, nearest))
+        if ((placed = try_position(v, c, nearby))) break;
+      if (placed) ++stats.nearest_refused;
+    }
+    if (placed) stats.max_move = std::max(stats.max_move, (surface_.positions[v] - original_[v]).norm());
+  }
+
+  // Faces that may meet a face around v while v moves, not around v themselves.
+  std::vector<Index> faces_near(Index v) const {
+    Box reach;
+    for (Index f : faces_around(v)) reach.add(face_reach_[f]);
+    std::vector<std::uint32_t> found;
+    faces_.query(reach.lo, reach.hi, found);
+    std::vector<Index> out;
+    const std::span<const Index> around = faces_around(v);
+    for (std::uint32_t g : found)
+      if (std::find(around.begin(), around.end(), g) == around.end()) out.push_back(g);
+    return out;
+  }
+
+  // Grid points up to max_steps steps from `nearest` along each axis,
+  // nearest to the original position first (ties: by offset, so the order is fixed).
+  std::vector<Vec3d> ring_candidates(Index v, const Vec3d& nearest) const {
+    const int r = options_.max_steps;
+    std::vector<std::array<double, 3>> axis_values(static_cast<std::size_t>(2 * r + 1));
+    for (int i = -r; i <= r; ++i)
+      for (int axis = 0; axis < 3; ++axis)
+        axis_values[static_cast<std::size_t>(i + r)][static_cast<std::size_t>(axis)] = grid_.step(axis, nearest[axis], i);
+    std::vector<std::tuple<double, int, int, int>> order;
+    for (int i = -r; i <= r; ++i)
+      for (int j = -r; j <= r; ++j)
+        for (int k = -r; k <= r; ++k) {
+          if (i == 0 && j == 0 && k == 0) continue;
+          const Vec3d c = candidate(axis_values, r, i, j, k);
+          order.emplace_back((c - original_[v]).squaredNorm(), i, j, k);
+        }
+    std::sort(order.begin(), order.end());
+    std::vector<Vec3d> out;
+    for (const auto& [distance, i, j, k] : order) {
+      const Vec3d c = candidate(axis_values, r, i, j, k);
+      if (out.empty() || out.back() != c) out.push_back(c);
+    }
+    return out;
+  }
+
+  static Vec3d candidate(const std::vector<std::array<double, 3>>& values, int r, int i, int j, int k) {
+    return {values[static_cast<std::size_t>(i + r)][0], values[static_cast<std::size_t>(j + r)][1],
+            values[static_cast<std::size_t>(k + r)][2]};
+  }
+
+  std::array<Vec3d, 3> corners(Index f, Index v, const Vec3d& at) const {
+    std::array<Vec3d, 3> c;
+    for (int k = 0; k < 3; ++k) {
+      const Index w = surface_.triangles[f][static_cast<std::size_t>(k)];
+      c[static_cast<std::size_t>(k)] = w == v ? at : surface_.positions[w];
+    }
+    return c;
+  }
+
+  // Moves v to c if that keeps the surface valid, exactly; true if it did.
+  bool try_position(Index v, const Vec3d& c, const std::vector<Index>& nearby) {
+    if (auto it = occupied_.find(c); it != occupied_.end() && it->second != v) return false;
+    const std::span<const Index> around = faces_around(v);
+    std::vector<std::array<Vec3d, 3>> moved;
+    for (Index f : around) {
+      moved.push_back(corners(f, v, c));
+      const auto& m = moved.back();
+      if (collinear(m[0], m[1], m[2])) return false;
+    }
+    const auto improper = [](const std::array<Vec3d, 3>& a, const std::array<Vec3d, 3>& b) {
+      return intersect_triangles(a[0], a[1], a[2], b[0], b[1], b[2]).improper();
+    };
+    for (std::size_t i = 0; i < moved.size(); ++i)
+      for (std::size_t j = i + 1; j < moved.size(); ++j)
+        if (improper(moved[i], moved[j])) return false;
+    for (std::size_t i = 0; i < moved.size(); ++i) {
+      Box box_i;
+      for (const Vec3d& p : moved[i]) box_i.add(p);
+      for (Index g : nearby) {
+        const std::array<Vec3d, 3> other = corners(g, v, c);
+        Box box_g;
+        for (const Vec3d& p : other) box_g.add(p);
+        if (box_i.overlaps(box_g) && improper(moved[i], other)) return false;
+      }
+    }
+    move(v, c);
+    return true;
+  }
+
+  void move(Index v, const Vec3d& c) {
+    if (auto it = occupied_.find(surface_.positions[v]); it != occupied_.end() && it->second == v) occupied_.erase(it);
+    surface_.positions[v] = c;
+    occupied_[c] = v;
+    on_grid_[v] = 1;
+  }
+
+  TriangleSoup& surface_;
+  const CoordinateGrid& grid_;
+  GridRoundingOptions options_;
+  std::vector<Vec3d> original_;
+  Incidence incidence_;
+  std::vector<std::uint8_t> on_grid_;
+  std::unordered_map<Vec3d, Index, PositionHash, PositionEqual> occupied_;
+  std::vector<Box> vertex_reach_;
+  std::vector<Box> face_reach_;
+  spatial::BoxGrid faces_;
+};
+
+}  // namespace
+
+GridRoundingStats round_to_grid(TriangleSoup& surface, const CoordinateGrid& grid, const GridRoundingOptions& options) {
+  if (options.max_steps < 0 || options.max_passes < 1)
+    throw UsageError("round_to_grid: max_steps must be >= 0 and max_passes >= 1");
+  if (grid.is_identity()) {
+    GridRoundingStats stats;
+    stats.vertices = surface.positions.size();
+    return stats;
+  }
+  for (const Vec3d& p : surface.positions)
+    if (!grid.nearest(p).allFinite())
+      throw RunError("a coordinate of the surface lies outside the range of the output's " + grid.name() + " grid");
+  return GridRounding(surface, grid, options).run();
+}
+
+}  // namespace mr::repair

@@ -1,0 +1,204 @@
+// Output precision: the coordinate grids formats store positions on, the
+// repair's rounding onto them, and meshrepair's promise on the written file.
+
+#include "test_support.h"
+
+#include <mr/check/surface_check.h>
+#include <mr/core/coordinate_grid.h>
+#include <mr/core/errors.h>
+#include <mr/io/default_registry.h>
+#include <mr/io/mesh_io.h>
+#include <mr/repair/round_to_grid.h>
+
+#include <meshrepair.h>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+
+using namespace mr;
+
+namespace {
+
+Eigen::Matrix3d some_rotation() {
+  return Eigen::AngleAxisd(0.7, Vec3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+}
+
+// Two unit cubes side by side, `gap` apart along x, rotated (or not) and
+// moved to `offset`: closed, manifold and apart in doubles; when `gap` is
+// below the grid's step, rounding each coordinate on its own makes them meet.
+TriangleSoup cubes_apart_by(double gap, const Vec3d& offset, bool rotate = true) {
+  TriangleSoup a = test::cube_soup(0.0, 1.0);
+  TriangleSoup b = test::cube_soup(0.0, 1.0);
+  for (Vec3d& p : b.positions) p += Vec3d(1.0 + gap, 0.3, 0.2);
+  a.append(b);
+  const Eigen::Matrix3d rotation = rotate ? some_rotation() : Eigen::Matrix3d::Identity();
+  for (Vec3d& p : a.positions) p = rotation * p + offset;
+  return a;
+}
+
+TriangleSoup rounded_naively(TriangleSoup soup, const CoordinateGrid& grid) {
+  for (Vec3d& p : soup.positions) p = grid.nearest(p);
+  return soup;
+}
+
+bool all_on(const TriangleSoup& soup, const CoordinateGrid& grid) {
+  for (const Vec3d& p : soup.positions)
+    if (!grid.holds(p)) return false;
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("float32 grid: nearest float, steps are neighbouring floats", "[grid]") {
+  const CoordinateGrid grid = CoordinateGrid::float32();
+  REQUIRE(grid.nearest(0, 0.1) == double(0.1f));
+  REQUIRE(grid.step(1, 1.0, 1) == double(std::nextafter(1.0f, 2.0f)));
+  REQUIRE(grid.step(2, 1.0, -2) == double(std::nextafter(std::nextafter(1.0f, 0.0f), 0.0f)));
+  REQUIRE(grid.holds(Vec3d(0.5, -3.0, 1e-3f)));
+  REQUIRE_FALSE(grid.holds(Vec3d(0.1, 0.0, 0.0)));
+  REQUIRE(CoordinateGrid::doubles().holds(Vec3d(0.1, 0.2, 0.3)));
+}
+
+TEST_CASE("quantized grid: values as Draco dequantizes them, covering the box with a margin", "[grid]") {
+  const Vec3d lo(-1.0, 2.0, 0.5), hi(3.0, 2.5, 0.75);
+  const CoordinateGrid grid = CoordinateGrid::quantized_over(lo, hi, 10);
+  const auto& q = grid.quantization();
+  REQUIRE(q.bits == 10);
+  for (int axis = 0; axis < 3; ++axis) {
+    REQUIRE(q.origin[axis] < lo[axis]);
+    REQUIRE(double(q.origin[axis]) + q.range > hi[axis]);
+  }
+  const float delta = q.range / 1023.0f;
+  for (int level : {0, 1, 17, 512, 1023}) {
+    const double value = double(float(float(level) * delta) + q.origin[0]);
+    REQUIRE(grid.nearest(0, value) == value);
+    if (level < 1023) REQUIRE(grid.step(0, value, 1) == double(float(float(level + 1) * delta) + q.origin[0]));
+  }
+  REQUIRE(grid.nearest(0, 1e9) == double(float(float(1023) * delta) + q.origin[0]));  // clamped to the range
+}
+
+TEST_CASE("rounding to float32 keeps two nearly touching cubes apart", "[grid][repair]") {
+  const CoordinateGrid grid = CoordinateGrid::float32();
+  const TriangleSoup input = cubes_apart_by(2e-9, Vec3d(0.123456789, -0.31415926, 0.27182818));
+  REQUIRE(check::check_surface(input).watertight());
+  // Each coordinate rounded on its own: the facing sides cross or merge.
+  REQUIRE_FALSE(check::check_surface(rounded_naively(input, grid)).watertight());
+
+  TriangleSoup rounded = input;
+  const repair::GridRoundingStats stats = repair::round_to_grid(rounded, grid);
+  REQUIRE(all_on(rounded, grid));
+  const check::SurfaceReport r = check::check_surface(rounded);
+  CAPTURE(check::watertight_failures(r));
+  REQUIRE(r.watertight());
+  REQUIRE(rounded.triangles == input.triangles);
+  REQUIRE(stats.moved == 16);
+  REQUIRE(stats.nearest_refused > 0);
+  REQUIRE(stats.max_move < 1e-6);
+}
+
+TEST_CASE("rounding to a coarse Draco grid keeps nearly touching cubes apart", "[grid][repair]") {
+  // Axis-aligned: the facing sides round to one plane and overlap.
+  const TriangleSoup input = cubes_apart_by(1e-7, Vec3d(0.5, 0.25, -0.125), false);
+  Vec3d lo = input.positions[0], hi = lo;
+  for (const Vec3d& p : input.positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const CoordinateGrid grid = CoordinateGrid::quantized_over(lo, hi, 11);  // steps of about 1.5e-3
+  REQUIRE_FALSE(check::check_surface(rounded_naively(input, grid)).watertight());
+  TriangleSoup rounded = input;
+  repair::round_to_grid(rounded, grid);
+  REQUIRE(all_on(rounded, grid));
+  const check::SurfaceReport r = check::check_surface(rounded);
+  CAPTURE(check::watertight_failures(r));
+  REQUIRE(r.watertight());
+}
+
+TEST_CASE("rounding refuses to place vertices it cannot keep apart", "[grid][repair]") {
+  // Steps of a quarter of the cube: with no search, the cubes 1e-3 apart must meet.
+  const TriangleSoup input = cubes_apart_by(1e-3, Vec3d::Zero());
+  const CoordinateGrid grid = CoordinateGrid::quantized_over(Vec3d::Constant(-3.0), Vec3d::Constant(3.0), 5);
+  TriangleSoup rounded = input;
+  repair::GridRoundingOptions no_search;
+  no_search.max_steps = 0;
+  REQUIRE_THROWS_AS(repair::round_to_grid(rounded, grid, no_search), RunError);
+}
+
+TEST_CASE("writers store positions exactly on the grid they announce", "[grid][io]") {
+  const io::Registry registry = io::make_default_registry();
+  test::TempDir dir("grid_writers");
+  TriangleSoup soup = cubes_apart_by(0.5, Vec3d(10.1, -0.2, 3.3));
+  Vec3d lo = soup.positions[0], hi = lo;
+  for (const Vec3d& p : soup.positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  for (const char* name : {"out.stl", "out.glb", "out.gltf", "out.drc", "out.obj", "out.ply", "out.off"}) {
+    SECTION(name) {
+      io::WriteOptions options;
+      options.draco.position_bits = 14;
+      const CoordinateGrid grid = io::surface_position_grid(registry, dir / name, options, lo, hi);
+      if (grid.kind() == CoordinateGrid::Kind::quantized) options.draco.position_grid = grid.quantization();
+      const TriangleSoup on_grid = rounded_naively(soup, grid);
+      io::write_surface(registry, on_grid, dir / name, options);
+      const TriangleSoup back = io::read_surface(registry, dir / name);
+      CAPTURE(grid.name());
+      REQUIRE(back.positions.size() == on_grid.positions.size());
+      // Readers may reorder vertices (Draco): compare the sets.
+      auto sorted = [](std::vector<Vec3d> p) {
+        std::sort(p.begin(), p.end(), [](const Vec3d& a, const Vec3d& b) {
+          return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+        });
+        return p;
+      };
+      const std::vector<Vec3d> read = sorted(back.positions), expected = sorted(on_grid.positions);
+      for (std::size_t i = 0; i < read.size(); ++i) {
+        CAPTURE(i, read[i].x(), read[i].y(), read[i].z(), expected[i].x(), expected[i].y(), expected[i].z());
+        REQUIRE(read[i] == expected[i]);
+      }
+    }
+  }
+}
+
+TEST_CASE("meshrepair's STL, GLB and Draco outputs stay watertight where float32 would merge two parts",
+          "[grid][repair][e2e]") {
+  // Two cubes far from the origin, 0.01 epsilon apart: less than half a float32
+  // step there, so a surface written as float32 without care merges them.
+  const io::Registry registry = io::make_default_registry();
+  test::TempDir dir("meshrepair_grid");
+  TriangleSoup a = test::cube_soup(0.0, 1.0), b = test::cube_soup(0.0, 1.0);
+  const double epsilon = 1e-3 * std::sqrt(6.0);
+  for (Vec3d& p : b.positions) p += Vec3d(1.0 + 0.01 * epsilon, 0.0, 0.0);
+  a.append(b);
+  for (Vec3d& p : a.positions) p += Vec3d(1000.0, 0.0, 0.0);
+  const auto input = dir / "near.obj";
+  io::write_surface(registry, a, input);
+
+  const auto in_doubles = dir / "out.obj";
+  REQUIRE(test::run_tool(tools::meshrepair, {input.string(), in_doubles.string(), "-q"}).exit_code == 0);
+  const TriangleSoup doubles = io::read_surface(registry, in_doubles);
+  REQUIRE(check::check_surface(doubles).watertight());
+  REQUIRE_FALSE(check::check_surface(rounded_naively(doubles, CoordinateGrid::float32())).watertight());
+
+  for (const char* name : {"out.stl", "out.glb", "out.drc"}) {
+    SECTION(name) {
+      const auto output = dir / name, stats = dir / "stats.json";
+      const test::ToolRun run = test::run_tool(tools::meshrepair, {input.string(), output.string(), "-q",
+                                                                    "--stats", stats.string()});
+      CAPTURE(run.err);
+      REQUIRE(run.exit_code == 0);
+      const check::SurfaceReport r = check::check_surface(io::read_surface(registry, output));
+      CAPTURE(check::watertight_failures(r));
+      REQUIRE(r.watertight());
+      REQUIRE(r.components == 2);
+      std::ifstream stats_file(stats);
+      const nlohmann::json j = nlohmann::json::parse(stats_file);
+      REQUIRE(j["written_file"]["watertight"] == true);
+      REQUIRE(j["repair"]["rounded_vertices"].get<int>() > 0);
+    }
+  }
+}
