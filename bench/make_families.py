@@ -194,10 +194,12 @@ def write_obj(path, vertices, triangles, comment):
 
 
 def boundary_edges(triangles):
-    """Number of undirected edges used by exactly one triangle (of a welded mesh)."""
-    if len(triangles) == 0:
-        return 0
+    """Number of undirected edges used by exactly one triangle (of a welded mesh); the zero-length edge
+    of a triangle with a repeated corner is no edge."""
     edges = np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]])
+    edges = edges[edges[:, 0] != edges[:, 1]]
+    if len(edges) == 0:
+        return 0
     _, counts = np.unique(np.sort(edges, axis=1), axis=0, return_counts=True)
     return int(np.sum(counts == 1))
 

@@ -155,6 +155,8 @@ class Families(unittest.TestCase):
     def test_boundary_edges(self):
         self.assertEqual(mf.boundary_edges(self.triangles), 0)
         self.assertEqual(mf.boundary_edges(self.triangles[:-1]), 3)
+        with_needle = np.concatenate([self.triangles, [[0, 1, 1]]])  # repeated corner: no new boundary
+        self.assertEqual(mf.boundary_edges(with_needle), 0)
 
     def test_select_by_glob_and_size(self):
         rows = [{"file": "a/x.obj", "faces": "10"}, {"file": "b/y.stl", "faces": "5000"}]
