@@ -40,6 +40,8 @@ def run_mesh_check(mesh_check, path, workdir, limits, stop, extra_args, name="ch
     note = ""
     if outcome.timed_out:
         note = f"mesh-check timed out after {limits.time_s:g} s"
+    elif outcome.returncode in (126, 127):  # GNU time's codes for a command it cannot run
+        note = f"mesh-check could not be run ({mesh_check}): " + execute.tail(outcome.stderr_path, 200)
     elif outcome.signal is not None:
         note = f"mesh-check killed by signal {outcome.signal}"
     report = None

@@ -27,6 +27,11 @@ def parse_args(argv):
                    help="folder of models; MANIFEST.tsv if present, else every mesh file under it "
                         "(default: ../shared/corpus next to the repository)")
     p.add_argument("--out", help="output folder (default: bench/results/TOOL)")
+    p.add_argument("--out-format", metavar="FMT[,FMT...]",
+                   help="meshrepair: the format(s) our tool writes, each checked on the written file: "
+                        f"{', '.join(tools.OUT_FORMATS)}, a comma list, or all ({','.join(tools.ALL_OUT_FORMATS)}); "
+                        "one results row per format (tool meshrepair.FMT). Default glb. Peers write what they "
+                        "always write")
     p.add_argument("--peers", help="comma-separated peers, or 'none' (default: tetrahedralize: tetgen,gmsh; "
                                    "meshrepair: admesh,meshlab; simplify-in-envelope: none)")
     p.add_argument("--no-ours", action="store_true", help="run the peers only")
@@ -49,17 +54,35 @@ def parse_args(argv):
     bad = set(filter(None, args.retry.split(","))) - set(STATUSES)
     if bad:
         p.error(f"--retry: unknown status {', '.join(sorted(bad))}; known: {', '.join(STATUSES)}")
+    try:
+        args.out_formats = tools.parse_out_formats(args.out_format, args.tool) if args.tool else []
+    except ValueError as e:
+        p.error(str(e))
+    _make_paths_absolute(args)
     return args
 
 
+def _make_paths_absolute(args):
+    """Every path argument made absolute against the current folder, before anything changes folder:
+    the tools and mesh-check run inside their work folders."""
+    args.build_dir = os.path.abspath(os.path.expanduser(args.build_dir))
+    for name in ("out", "corpus"):
+        value = getattr(args, name)
+        if value:
+            setattr(args, name, os.path.abspath(os.path.expanduser(value)))
+    args.tool_path = [_absolute_override(pair) for pair in args.tool_path]
+
+
+def _absolute_override(pair):
+    name, sep, path = pair.partition("=")
+    if not sep or not name or not path:
+        raise SystemExit(f"--tool-path expects NAME=PATH, got {pair!r}")
+    return f"{name}={os.path.abspath(os.path.expanduser(path))}"
+
+
 def _overrides(pairs):
-    result = {}
-    for pair in pairs:
-        name, sep, path = pair.partition("=")
-        if not sep:
-            raise SystemExit(f"--tool-path expects NAME=PATH, got {pair!r}")
-        result[name] = os.path.abspath(path)
-    return result
+    """{name: absolute path} from NAME=PATH pairs (already absolute after parse_args)."""
+    return dict(pair.partition("=")[::2] for pair in pairs)
 
 
 def _select_tools(args, overrides):
@@ -70,16 +93,21 @@ def _select_tools(args, overrides):
     if unknown:
         raise SystemExit(f"unknown peer(s): {', '.join(unknown)}; known: "
                          f"{', '.join(n for n, t in known.items() if not t.ours)}")
-    chosen = ([] if args.no_ours else [args.tool]) + peers
-    selected = [tools.locate(known[n], args.build_dir, overrides) for n in chosen]
+    ours = [] if args.no_ours else _our_variants(known[args.tool], args.out_formats)
+    selected = [tools.locate(t, args.build_dir, overrides) for t in ours + [known[n] for n in peers]]
     for t in selected:
         t.version = machine.package_version(t.name) if t.available and not t.ours else ""
     return selected
 
 
+def _our_variants(tool, formats):
+    """Our tool once per requested output format (or as it is when it has one fixed output)."""
+    return [tools.with_out_format(tool, f) for f in formats] if formats else [tool]
+
+
 def _tool_meta(t):
     return {"ours": t.ours, "task": t.task, "executable": t.executable, "unavailable": t.unavailable,
-            "fair_config": t.fair_config, "version": t.version}
+            "fair_config": t.fair_config, "version": t.version, "out_format": t.out_format}
 
 
 def _load_meta(out_dir):
@@ -136,17 +164,19 @@ def build_report(out_dir, corpus_override=None):
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
     args = parse_args(argv)
-    out_dir = os.path.abspath(args.out or os.path.join(BENCH_DIR, "results", args.tool or ""))
+    out_dir = args.out or os.path.join(BENCH_DIR, "results", args.tool or "")
     if args.report_only:
-        print(build_report(out_dir, os.path.abspath(args.corpus) if args.corpus else None))
+        print(build_report(out_dir, args.corpus))
         return 0
     args.time_limit = args.time_limit or DEFAULT_TIME_LIMIT[args.tool]
     overrides = _overrides(args.tool_path)
     mesh_check = tools.helper(args.build_dir, "mesh-check", overrides)
     if not mesh_check:
-        raise SystemExit(f"mesh-check is not built in {args.build_dir} (every output is checked with it): "
-                         "build it (ninja -C BUILD mesh-check) or pass --build-dir / --tool-path mesh-check=PATH")
-    corpus = os.path.abspath(args.corpus or DEFAULT_CORPUS)
+        where = (f"no executable at {overrides['mesh-check']}" if "mesh-check" in overrides
+                 else f"mesh-check is not built in {args.build_dir}")
+        raise SystemExit(f"{where} (every output is checked with it): build it (ninja -C BUILD mesh-check) "
+                         "or pass --build-dir / --tool-path mesh-check=PATH")
+    corpus = args.corpus or DEFAULT_CORPUS
     chosen = models.select(models.discover(corpus), args.models)
     if not chosen:
         raise SystemExit(f"no models in {corpus}" + (f" matching {args.models}" if args.models else ""))

@@ -33,6 +33,12 @@ def _label(tool, meta):
     return f"**{tool}** (ours)" if meta.get("ours") else tool
 
 
+def _out_format(tool, meta, rows):
+    """Format of the file a tool wrote: from the run's metadata, else from its rows (older runs: '—')."""
+    written = meta.get("out_format") or next((r.get("out_format") for r in rows if r.get("out_format")), None)
+    return written or "—"
+
+
 def _pct(ok, n):
     return f"{ok}/{n} ({100.0 * ok / n:.0f}%)" if n else "0/0"
 
@@ -52,23 +58,26 @@ def headline(order, grouped, tools_meta):
 def success_section(order, grouped, tools_meta):
     lines = {t: summary.success_line(grouped[t]) for t in order if t in grouped}
     kinds = [k for k in FAILURES if any(line[k] for line in lines.values())]
-    header = ["tool", "valid / attempted"] + [KIND_HEADERS[k] for k in kinds] + [
+    header = ["tool", "output checked", "valid / attempted"] + [KIND_HEADERS[k] for k in kinds] + [
         "median wall s", "mean wall s", "median CPU s", "median peak MB", "max peak MB"]
     rows = []
     for tool in order:
         meta = tools_meta.get(tool, {})
+        written = _out_format(tool, meta, grouped.get(tool, []))
         if tool in lines:
             s = lines[tool]
-            rows.append([_label(tool, meta), _pct(s["ok"], s["attempted"])] + [s[k] for k in kinds] +
+            rows.append([_label(tool, meta), written, _pct(s["ok"], s["attempted"])] + [s[k] for k in kinds] +
                         [fmt(s["median_wall"]), fmt(s["mean_wall"]), fmt(s["median_cpu"]),
                          fmt(s["median_peak_mb"], 0), fmt(s["peak_mb"], 0)])
         elif meta.get("unavailable"):
-            rows.append([_label(tool, meta), f"not available: {meta['unavailable']}"] + [""] * (len(header) - 2))
+            rows.append([_label(tool, meta), written, f"not available: {meta['unavailable']}"] +
+                        [""] * (len(header) - 3))
     missing = [KIND_HEADERS[k] for k in FAILURES if k not in kinds]
     text = ["## Success (every output checked by our mesh-check)", "",
             _table(header, rows), "",
             "Times and memory are over the valid outputs only. Wall and CPU (user + sys of the tool's own process) "
-            "seconds; peak MB = peak resident memory (ru_maxrss)."]
+            "seconds; peak MB = peak resident memory (ru_maxrss). Output checked: the format of the file the "
+            "tool wrote, which mesh-check read (`meshrepair.FMT` = meshrepair asked for that format)."]
     if missing:
         text.append(f"No run ended as: {', '.join(missing)}.")
     return "\n".join(text)

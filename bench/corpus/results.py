@@ -12,7 +12,7 @@ STATUSES = ("ok", "crash", "error", "timeout", "oom", "empty", "invalid", "unche
 FAILURES = STATUSES[1:]
 
 ROW_KEYS = (
-    "model", "file", "tags", "input_faces", "input_bytes", "tool", "ours", "task", "status", "note",
+    "model", "file", "tags", "input_faces", "input_bytes", "tool", "ours", "task", "out_format", "status", "note",
     "returncode", "signal", "wall_s", "cpu_s", "user_s", "sys_s", "peak_mb", "time_limit_s", "memory_limit_mb",
     "epsilon", "output", "output_bytes", "tool_stats", "finished_at",
 )

@@ -78,7 +78,7 @@ def run_tool(ctx, model, tool, input_faces, reference):
     os.makedirs(workdir)
     row = dict.fromkeys(ROW_KEYS + check.CHECK_FIELDS)
     row.update(model=model.key, file=model.relpath, tags=list(model.tags), input_faces=input_faces,
-               input_bytes=model.bytes, tool=tool.name, ours=tool.ours, task=tool.task,
+               input_bytes=model.bytes, tool=tool.name, ours=tool.ours, task=tool.task, out_format=tool.out_format,
                time_limit_s=ctx.limits.time_s, memory_limit_mb=ctx.limits.memory_mb, epsilon=ctx.epsilon)
     path, note = prepare_input(ctx, tool, model, workdir)
     if path is None:

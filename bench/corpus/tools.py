@@ -2,16 +2,24 @@
 
 Each tool knows how to find its binary, which input format it reads (peers get the input
 converted by our format-convert, untimed), the exact command of its fair configuration, and
-where its output lands. Ours are called with one thread (-j 1) so that -j N of the runner
+where its output lands. meshrepair writes the format a user asks for (--out-format of the runner):
+one tool entry per format, named `meshrepair.glb`, `meshrepair.stl`, ..., each checked on the file
+it wrote. Ours are called with one thread (-j 1) so that -j N of the runner
 means N busy cores; peers get OMP_NUM_THREADS=1 and gmsh also -nt 1.
 """
 import glob
 import os
 import shutil
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 TASKS = ("tetrahedralize", "meshrepair", "simplify-in-envelope")
 VOLUME, SURFACE = "volume", "surface"
+OUT_FORMATS = ("glb", "stl", "obj", "drc")  # what meshrepair can be asked to write
+ALL_OUT_FORMATS = ("glb", "stl", "drc")  # --out-format all: the formats a user receives
+DEFAULT_OUT_FORMAT = {"meshrepair": "glb"}  # tools without an entry keep their one output
+FORMAT_NOTES = {"glb": "; GLB: float32 positions", "stl": "; binary STL: float32 corners, welded by mesh-check",
+                "obj": "; OBJ: shortest exact decimal of each double",
+                "drc": "; Draco .drc: positions quantized to 16 bits per component (the writer's default)"}
 
 
 @dataclass
@@ -22,6 +30,8 @@ class Tool:
     output_kind: str  # VOLUME or SURFACE
     fair_config: str  # for the report
     input_ext: str | None = None  # None: reads the original file; else convert to this
+    output_name: str = ""  # file the tool writes in its workdir (its extension is the output format)
+    program: str = ""  # executable's name in the build folder or on PATH; default: name
     executable: str | None = None
     unavailable: str = ""  # why the tool cannot run here, if it cannot
     version: str = ""
@@ -41,6 +51,14 @@ class Tool:
 
     def output(self, workdir):
         return self.find_output(workdir)
+
+    @property
+    def out_format(self):
+        return os.path.splitext(self.output_name)[1].lstrip(".")
+
+    @property
+    def program_name(self):
+        return self.program or self.name
 
 
 def _fixed_output(name):
@@ -80,7 +98,8 @@ def _ours_tetrahedralize(tool, inp, workdir, eps):
 
 
 def _ours_meshrepair(tool, inp, workdir, eps):
-    return [tool.executable, inp, os.path.join(workdir, "out.obj"), "--stats", os.path.join(workdir, "stats.json"), "-q"]
+    return [tool.executable, inp, os.path.join(workdir, tool.output_name), "--stats",
+            os.path.join(workdir, "stats.json"), "-q"]
 
 
 def _ours_simplify(tool, inp, workdir, eps):
@@ -109,7 +128,18 @@ def _meshlab(tool, inp, workdir, eps):
 
 
 def _ours(name, output_kind, builder, output, config):
-    return Tool(name, name, True, output_kind, config, None, build_command=builder, find_output=_fixed_output(output))
+    return Tool(name, name, True, output_kind, config, None, output, build_command=builder,
+                find_output=_fixed_output(output))
+
+
+def with_out_format(tool, fmt):
+    """A copy of one of our surface tools that writes out.FMT, named TOOL.FMT (its own results rows)."""
+    if fmt not in OUT_FORMATS:
+        raise ValueError(f"unknown output format {fmt!r}; known: {', '.join(OUT_FORMATS)}")
+    output = f"out.{fmt}"
+    config = tool.fair_config.replace(tool.output_name, output) + FORMAT_NOTES.get(fmt, "")
+    return replace(tool, name=f"{tool.name}.{fmt}", program=tool.program_name, output_name=output,
+                   fair_config=config, find_output=_fixed_output(output))
 
 
 def all_tools():
@@ -123,19 +153,20 @@ def all_tools():
               "`simplify-in-envelope IN out.ply -e EPS --stats stats.json` (original input file)"),
         Tool("tetgen", "tetrahedralize", False, VOLUME,
              "`tetgen -pq1.414gQ in.off` (Debian TetGen 1.5; PLC, radius-edge bound 1.414, medit output, "
-             "as in BASELINE.md; input converted to OFF by format-convert, untimed)", ".off",
+             "as in BASELINE.md; input converted to OFF by format-convert, untimed)", ".off", "in.1.mesh",
              build_command=_tetgen, find_output=_tetgen_output, finish_input=_strip_off_comments),
         Tool("gmsh", "tetrahedralize", False, VOLUME,
              "`gmsh -3 -nt 1 in.geo -o out.msh -format msh41`, in.geo = `Merge \"in.stl\"; Surface Loop(1) = {1}; "
              "Volume(1) = {1};` (default 3D Delaunay, mesh size from the surface; input converted to STL by "
-             "format-convert, untimed)", ".stl",
+             "format-convert, untimed)", ".stl", "out.msh",
              build_command=_gmsh, find_output=_fixed_output("out.msh"), finish_input=_gmsh_geo),
         Tool("admesh", "meshrepair", False, SURFACE,
              "`admesh --write-binary-stl=out.stl in.stl` (all of admesh's default repairs: exact and "
-             "nearby merge, remove unconnected facets, fill holes, fix normals; input converted to STL)", ".stl",
+             "nearby merge, remove unconnected facets, fill holes, fix normals; input converted to STL)", ".stl", "out.stl",
              build_command=_admesh, find_output=_fixed_output("out.stl")),
         Tool("meshlab", "meshrepair", False, SURFACE,
              "`xvfb-run -a meshlabserver -i in.ply -o out.ply -s meshlab_repair.mlx` (MeshLab 2020.09, Debian)", ".ply",
+             "out.ply",
              build_command=_meshlab, find_output=_fixed_output("out.ply")),
     ]
     return {t.name: t for t in tools}
@@ -147,10 +178,11 @@ PEER_BINARIES = {"tetgen": ["tetgen"], "gmsh": ["gmsh"], "admesh": ["admesh"], "
 
 def locate(tool, build_dir, overrides):
     """Fills tool.executable, or tool.unavailable with the reason it cannot run here."""
-    if tool.name in overrides:
-        path = overrides[tool.name]
+    name = tool.program_name
+    if name in overrides:
+        path = overrides[name]
     elif tool.ours:
-        path = os.path.join(build_dir, "tools", tool.name, tool.name)
+        path = os.path.join(build_dir, "tools", name, name)
     else:
         path = next((p for p in map(shutil.which, PEER_BINARIES[tool.name]) if p), None)
     if path and os.path.isfile(path) and os.access(path, os.X_OK):
@@ -165,6 +197,23 @@ def locate(tool, build_dir, overrides):
 
 
 def helper(build_dir, name, overrides):
-    """Path of one of our helper tools (format-convert, mesh-check), or None if not built."""
-    path = overrides.get(name, os.path.join(build_dir, "tools", name, name))
+    """Absolute path of one of our helper tools (format-convert, mesh-check), or None if not built."""
+    path = os.path.abspath(overrides.get(name, os.path.join(build_dir, "tools", name, name)))
     return path if os.path.isfile(path) and os.access(path, os.X_OK) else None
+
+
+def parse_out_formats(text, task):
+    """--out-format value -> list of formats for our tool of `task` ([] = its one fixed output).
+    Raises ValueError with the reason when the value does not fit the task."""
+    if task not in DEFAULT_OUT_FORMAT:
+        if text:
+            raise ValueError(f"--out-format is for {', '.join(DEFAULT_OUT_FORMAT)}; {task} keeps its own output")
+        return []
+    if not text:
+        return [DEFAULT_OUT_FORMAT[task]]
+    formats = list(ALL_OUT_FORMATS) if text == "all" else [f.strip().lower() for f in text.split(",") if f.strip()]
+    unknown = [f for f in formats if f not in OUT_FORMATS]
+    if unknown or not formats:
+        raise ValueError(f"--out-format: unknown format {', '.join(unknown) or '(none)'}; "
+                         f"known: {', '.join(OUT_FORMATS)} or all ({','.join(ALL_OUT_FORMATS)})")
+    return list(dict.fromkeys(formats))

@@ -136,8 +136,8 @@ class RunnerEndToEnd(unittest.TestCase):
         with open(os.path.join(self.out, "report.md")) as f:
             report = f.read()
         self.assertIn("## Success", report)
-        self.assertIn("| tool | valid / attempted | crash | timeout |", report)
-        self.assertIn("| **tetrahedralize** (ours) | 1/3 (33%) | 1 | 1 |", report)
+        self.assertIn("| tool | output checked | valid / attempted | crash | timeout |", report)
+        self.assertIn("| **tetrahedralize** (ours) | msh | 1/3 (33%) | 1 | 1 |", report)
         self.assertIn("## Run", report)
         self.assertIn("--tool tetrahedralize", report)
         self.assertIn("## Per model", report)

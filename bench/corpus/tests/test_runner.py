@@ -77,7 +77,7 @@ class RunnerTest(unittest.TestCase):
         self.assertEqual(by_model["broken"]["status"], "error")
         with open(os.path.join(out, "report.md")) as f:
             report = f.read()
-        self.assertIn("| tool | valid / attempted |", report)
+        self.assertIn("| tool | output checked | valid / attempted |", report)
         self.assertIn("2/3", report)
         self.assertIn("Machine:", report)
         self.assertTrue(os.path.exists(os.path.join(out, "time_vs_size.png")))
