@@ -234,6 +234,40 @@ TEST_CASE("random tet subsets with the rest of the block on offer become waterti
   }
 }
 
+TEST_CASE("when its rounds run out, the manifold fix falls back to filling the stars of defects", "[repair]") {
+  // One round cannot resolve these random subsets; the fallback starts
+  // again from the flags and only adds tets, so it ends manifold with at
+  // least the volume that was kept.
+  const TetMesh block = fine_cube_tets(3);
+  int fell_back = 0;
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    CAPTURE(seed);
+    std::mt19937 random(seed);
+    std::vector<std::uint8_t> inside(block.tets.size());
+    TetMesh kept;
+    kept.positions = block.positions;
+    for (std::size_t t = 0; t < block.tets.size(); ++t) {
+      inside[t] = random() % 2;
+      if (inside[t]) kept.tets.push_back(block.tets[t]);
+    }
+    TetMesh mesh = block;
+    repair::ManifoldFixOptions options;
+    options.max_move = 1e-3;
+    options.max_rounds = 1;
+    const repair::ManifoldFixStats stats = repair::make_boundary_manifold(mesh, inside, nullptr, options);
+    const check::SurfaceReport r = check::check_surface(extract_boundary(mesh));
+    CAPTURE(stats.fell_back, stats.fallback_steps, stats.fallback_added_tets, check::watertight_failures(r));
+    REQUIRE(r.watertight());
+    if (stats.fell_back) {
+      ++fell_back;
+      REQUIRE(stats.fallback_added_tets > 0);
+      REQUIRE(mesh.tets.size() == kept.tets.size() + stats.fallback_added_tets);
+      REQUIRE(test::tet_volume(mesh) >= test::tet_volume(kept) - 1e-12);
+    }
+  }
+  REQUIRE(fell_back > 0);
+}
+
 TEST_CASE("a pinch in a thin layer is closed by adding rejected tets", "[repair]") {
   // A 2x2x3 block whose thin middle layer lacks two diagonal cells: the
   // middle vertical edge is non-manifold, and both its ends have connected

@@ -73,6 +73,8 @@ nlohmann::json repair_figures(const repair::RepairResult& r) {
           {"added_tets", r.manifold.added_tets},
           {"edit_faces_outside_envelope", r.manifold.faces_outside_envelope},
           {"manifold_rounds", r.manifold.rounds},
+          {"manifold_fell_back", r.manifold.fell_back},
+          {"fallback_added_tets", r.manifold.fallback_added_tets},
           {"peeled_faces", r.peeled_faces},
           {"collapses", r.collapses},
           {"flips", r.flips},

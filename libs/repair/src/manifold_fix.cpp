@@ -166,9 +166,24 @@ Examined examine(const TetMesh& mesh, std::span<const TetState> states) {
   return {std::move(neighbours), std::move(boundary), std::move(defects)};
 }
 
-std::string describe(const BoundaryDefects& defects) {
-  return std::to_string(defects.nonmanifold_edges.size()) + " non-manifold edges and " +
-         std::to_string(defects.nonmanifold_vertices.size()) + " non-manifold vertices remain";
+// The fallback (manifold_fix.h): while defects remain, every tet around a
+// defect vertex joins the solid. Terminates: each step adds a tet.
+void fill_defect_stars(const TetMesh& mesh, std::vector<TetState>& states, ManifoldFixStats& stats) {
+  const VertexStars stars(mesh.tets, mesh.positions.size());
+  for (;;) {
+    const Examined now = examine(mesh, states);
+    if (now.defects.manifold()) return;
+    ++stats.fallback_steps;
+    std::size_t added = 0;
+    for (Index v : defect_vertices(now.defects))
+      for (Index t : stars.of(v))
+        if (!in_solid(states[t])) {
+          states[t] = TetState::solid;
+          ++added;
+        }
+    if (added == 0) throw RunError("repair: internal error: a defect vertex has every tet around it in the solid");
+    stats.fallback_added_tets += added;
+  }
 }
 
 }  // namespace
@@ -182,6 +197,7 @@ ManifoldFixStats make_boundary_manifold(TetMesh& mesh, std::span<const std::uint
   mesh.faces.clear();
   mesh.face_labels.clear();
   std::vector<TetState> states = initial_states(inside, mesh.tets.size());
+  const TetMesh unchanged = mesh;  // for the fallback
   ManifoldFixStats stats;
   for (int round = 0;; ++round) {
     Examined now = examine(mesh, states);
@@ -210,14 +226,22 @@ ManifoldFixStats make_boundary_manifold(TetMesh& mesh, std::span<const std::uint
       keep_solid_only(mesh, states);
       return stats;
     }
-    if (round == options.max_rounds)
-      throw RunError("repair: the boundary is still not manifold after " + std::to_string(round) +
-                     " rounds: " + describe(defects));
-    const std::size_t copies = split_round(mesh, states, neighbours, boundary, defects, options.max_move);
-    stats.vertex_copies += copies;
-    if (copies > 0) continue;
-    if (EditRound(mesh, states, neighbours, envelope, stats).run(defects) == 0)
-      throw RunError("repair: cannot make the boundary manifold without removing every tet: " + describe(defects));
+    bool stuck = round == options.max_rounds;
+    if (!stuck) {
+      const std::size_t copies = split_round(mesh, states, neighbours, boundary, defects, options.max_move);
+      stats.vertex_copies += copies;
+      if (copies > 0) continue;
+      stuck = EditRound(mesh, states, neighbours, envelope, stats).run(defects) == 0;
+    }
+    if (stuck) {
+      stats.rounds = round;
+      stats.fell_back = true;
+      mesh = unchanged;
+      states = initial_states(inside, mesh.tets.size());
+      fill_defect_stars(mesh, states, stats);
+      keep_solid_only(mesh, states);
+      return stats;
+    }
   }
 }
 

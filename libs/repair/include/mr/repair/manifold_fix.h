@@ -18,7 +18,16 @@
 //     the input.
 // In the first rounds, the tets at each defect are split thin first (a
 // collar, collar_width), so the fans removed or added there stay close to
-// it. Rounds repeat until the boundary is manifold.
+// it. Rounds repeat until the boundary is manifold, at most max_rounds.
+//
+// Where the rounds run out (or no edit is left), the fix falls back to a
+// procedure that always ends manifold: it starts again from the filter's
+// tets and, while defects remain, adds every tet around each defect vertex
+// to the solid. Each step adds at least one tet (a vertex whose tets are all
+// in the solid lies inside it, or on the background mesh's convex hull
+// where its boundary faces form a disc, so it is no defect), so it ends
+// after at most as many steps as there are tets, at worst with the whole
+// background mesh, whose boundary is a closed manifold.
 
 #include <mr/core/tet_mesh.h>
 #include <mr/envelope/envelope.h>
@@ -40,7 +49,7 @@ struct ManifoldFixOptions {
   /// Collars are built in this many first rounds only (manifold_fix.cpp
   /// says why they are rebuilt, and why not for ever).
   int collar_rounds = 10;
-  /// Upper bound on rounds; mr::RunError when defects remain after them.
+  /// Upper bound on rounds; the fallback runs when defects remain after them.
   int max_rounds = 32;
 };
 
@@ -55,6 +64,10 @@ struct ManifoldFixStats {
   /// the envelope.
   std::size_t faces_outside_envelope = 0;
   int rounds = 0;
+  /// The rounds ran out: the solid was rebuilt from the filter's tets by the fallback.
+  bool fell_back = false;
+  std::size_t fallback_steps = 0;
+  std::size_t fallback_added_tets = 0;
 };
 
 /// Edits `mesh` until the boundary of its solid is manifold, and leaves in
@@ -63,8 +76,7 @@ struct ManifoldFixStats {
 /// the others are the tets the winding-number filter rejected, which the
 /// fix may add. Tets must be positively oriented and form a valid
 /// embedding. `envelope` (may be null) guides the choice of removals and
-/// additions. Throws mr::UsageError when `inside` has the wrong size, and
-/// mr::RunError when the rounds run out or when every tet would have to go.
+/// additions. Throws mr::UsageError when `inside` has the wrong size.
 ManifoldFixStats make_boundary_manifold(TetMesh& mesh, std::span<const std::uint8_t> inside,
                                         const envelope::Envelope* envelope, const ManifoldFixOptions& options);
 
