@@ -10,6 +10,7 @@
 #include <mr/io/mesh_io.h>
 #include <mr/repair/round_to_grid.h>
 
+#include <extract_boundary.h>
 #include <meshrepair.h>
 
 #include <catch2/catch.hpp>
@@ -201,4 +202,37 @@ TEST_CASE("meshrepair's STL, GLB and Draco outputs stay watertight where float32
       REQUIRE(j["repair"]["rounded_vertices"].get<int>() > 0);
     }
   }
+}
+
+TEST_CASE("extract-boundary writes a watertight boundary that stays watertight in float32", "[grid][e2e]") {
+  // Two cubes of tets 2e-9 apart, rotated off the axes: their boundary is
+  // watertight in doubles, and merges when rounded to float32 naively.
+  const io::Registry registry = io::make_default_registry();
+  test::TempDir dir("extract_boundary_grid");
+  TetMesh mesh = test::cube_tets(), other = test::cube_tets();
+  const auto offset = static_cast<Index>(mesh.positions.size());
+  for (const Vec3d& p : other.positions) mesh.positions.push_back(p + Vec3d(1.0 + 2e-9, 0.3, 0.2));
+  for (Tet t : other.tets) {
+    for (Index& v : t) v += offset;
+    mesh.tets.push_back(t);
+  }
+  mesh.tet_labels.assign(mesh.tets.size(), 1);
+  const Eigen::Matrix3d rotation = some_rotation();
+  for (Vec3d& p : mesh.positions) p = rotation * p + Vec3d(0.123456789, -0.31415926, 0.27182818);
+  const auto input = dir / "two.msh";
+  io::write_volume(registry, mesh, input);
+
+  const auto obj = dir / "boundary.obj", stl = dir / "boundary.stl";
+  REQUIRE(test::run_tool(tools::extract_boundary, {input.string(), obj.string(), "-q"}).exit_code == 0);
+  const TriangleSoup doubles = io::read_surface(registry, obj);
+  REQUIRE(check::check_surface(doubles).watertight());
+  REQUIRE_FALSE(check::check_surface(rounded_naively(doubles, CoordinateGrid::float32())).watertight());
+
+  const test::ToolRun run = test::run_tool(tools::extract_boundary, {input.string(), stl.string(), "-q"});
+  CAPTURE(run.err);
+  REQUIRE(run.exit_code == 0);
+  const check::SurfaceReport r = check::check_surface(io::read_surface(registry, stl));
+  CAPTURE(check::watertight_failures(r));
+  REQUIRE(r.watertight());
+  REQUIRE(r.components == 2);
 }

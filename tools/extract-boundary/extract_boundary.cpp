@@ -1,9 +1,12 @@
 #include "extract_boundary.h"
 
+#include <mr/check/surface_check.h>
+#include <mr/check/written_file.h>
 #include <mr/cli/run_tool.h>
 #include <mr/core/errors.h>
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
+#include <mr/repair/round_to_grid.h>
 #include <mr/repair/tet_boundary.h>
 
 #include <climits>
@@ -43,6 +46,27 @@ cli::ToolSpec make_spec(ToolOptions& o) {
   return spec;
 }
 
+// A boundary that is watertight in doubles stays so in the written file:
+// its vertices go onto the grid the format stores (repair::round_to_grid),
+// and the file is read back and checked before it is renamed into place.
+// Other boundaries (open, pinched, interfaces) are written as they are.
+void write_boundary(const io::Registry& registry, TriangleSoup boundary, const std::string& path, bool interfaces) {
+  if (interfaces || boundary.triangles.empty() || !check::check_surface(boundary).watertight()) {
+    io::write_surface(registry, boundary, path);
+    return;
+  }
+  Vec3d lo = boundary.positions.front(), hi = lo;
+  for (const Vec3d& p : boundary.positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  io::WriteOptions options;
+  const CoordinateGrid grid = io::surface_position_grid(registry, path, options, lo, hi);
+  if (grid.kind() == CoordinateGrid::Kind::quantized) options.draco.position_grid = grid.quantization();
+  repair::round_to_grid(boundary, grid);
+  io::write_surface(registry, boundary, path, options, check::watertight_file_check(registry, path));
+}
+
 }  // namespace
 
 int extract_boundary(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -56,7 +80,7 @@ int extract_boundary(const std::vector<std::string>& args, std::ostream& out, st
     const io::Registry registry = io::make_default_registry();
     const TetMesh mesh = io::read_volume(registry, files[0]);
     const TriangleSoup boundary = repair::tet_mesh_boundary(mesh, options.request);
-    io::write_surface(registry, boundary, files[1]);
+    write_boundary(registry, boundary, files[1], options.interfaces);
     if (!options.quiet)
       out << files[0] << ": " << mesh.tets.size() << " tets -> " << boundary.triangles.size()
           << " boundary faces\n";
