@@ -545,3 +545,67 @@ TEST_CASE("meshrepair reports bad input and usage with exit code 2", "[repair]")
   REQUIRE(run.exit_code == 0);
   REQUIRE(run.out.find("--stats") != std::string::npos);
 }
+
+namespace {
+
+// The families users send (bench/make_families.py makes them from the
+// corpus): every triangle unwelded and shuffled, corners rotated; a tenth of
+// them duplicated and a twentieth flipped when `defects`.
+TriangleSoup as_soup(const TriangleSoup& welded, unsigned seed, bool defects) {
+  std::mt19937 random(seed);
+  std::vector<Triangle> order = welded.triangles;
+  std::shuffle(order.begin(), order.end(), random);
+  TriangleSoup soup;
+  const auto add = [&](const Triangle& t, bool flip) {
+    const auto first = static_cast<Index>(soup.positions.size());
+    const int rotation = static_cast<int>(random() % 3);
+    for (int k = 0; k < 3; ++k) soup.positions.push_back(welded.positions[t[(k + rotation) % 3]]);
+    soup.triangles.push_back(flip ? Triangle{first, first + 2, first + 1} : Triangle{first, first + 1, first + 2});
+  };
+  for (const Triangle& t : order) {
+    add(t, defects && random() % 20 == 0);
+    if (defects && random() % 10 == 0) add(t, false);
+  }
+  return soup;
+}
+
+// Every vertex moved by `amount` in a random direction.
+TriangleSoup jittered(TriangleSoup soup, double amount, unsigned seed) {
+  std::mt19937 random(seed);
+  std::normal_distribution<double> normal;
+  for (Vec3d& p : soup.positions) p += amount * Vec3d(normal(random), normal(random), normal(random)).normalized();
+  return soup;
+}
+
+void require_watertight_glb(const TriangleSoup& input, const std::string& name) {
+  const io::Registry registry = io::make_default_registry();
+  test::TempDir dir("meshrepair_" + name);
+  const auto in = dir / (name + ".stl"), out = dir / (name + ".glb"), stats = dir / "stats.json";
+  io::write_surface(registry, input, in);
+  const test::ToolRun run = run_meshrepair({in.string(), out.string(), "-q", "--stats", stats.string()});
+  CAPTURE(run.err);
+  REQUIRE(run.exit_code == 0);
+  const check::SurfaceReport r = check::check_surface(io::read_surface(registry, out));
+  CAPTURE(check::watertight_failures(r));
+  REQUIRE(r.watertight());
+  std::ifstream stats_file(stats);
+  const nlohmann::json j = nlohmann::json::parse(stats_file);
+  const double epsilon = j["epsilon_abs"].get<double>();
+  CAPTURE(epsilon, j["output"]["hausdorff_output_to_input"], j["output"]["hausdorff_input_to_output"]);
+  REQUIRE(j["output"]["hausdorff_input_to_output"].get<double>() <= 1.01 * epsilon);
+}
+
+}  // namespace
+
+TEST_CASE("meshrepair makes a soup of a sphere watertight in GLB", "[repair][e2e]") {
+  require_watertight_glb(as_soup(sphere(1.0, 3), 7, false), "soup");
+}
+
+TEST_CASE("meshrepair makes a soup with duplicated and flipped triangles watertight in GLB", "[repair][e2e]") {
+  require_watertight_glb(as_soup(sphere(1.0, 3), 8, true), "soup_dup_flip");
+}
+
+TEST_CASE("meshrepair makes a jittered sphere watertight in GLB", "[repair][e2e]") {
+  const TriangleSoup s = sphere(1.0, 4);
+  require_watertight_glb(jittered(s, 0.5e-3 * bounding_box_diagonal(s), 9), "jitter");
+}
