@@ -209,20 +209,30 @@ TEST_CASE("random tet subsets of a block become watertight surfaces", "[repair]"
   }
 }
 
+namespace {
+
+// Each tet of `block` flagged inside with probability 1/2, and the flagged tets.
+std::pair<std::vector<std::uint8_t>, TetMesh> random_half(const TetMesh& block, unsigned seed) {
+  std::mt19937 random(seed);
+  std::vector<std::uint8_t> inside(block.tets.size());
+  TetMesh kept;
+  kept.positions = block.positions;
+  for (std::size_t t = 0; t < block.tets.size(); ++t) {
+    inside[t] = random() % 2;
+    if (inside[t]) kept.tets.push_back(block.tets[t]);
+  }
+  return {std::move(inside), std::move(kept)};
+}
+
+}  // namespace
+
 TEST_CASE("random tet subsets with the rest of the block on offer become watertight surfaces", "[repair]") {
   // The manifold fix may now add rejected tets as well as remove kept ones,
   // and splits lock rejected tets out: every mix must still end manifold.
   const TetMesh block = fine_cube_tets(3);
   for (unsigned seed = 1; seed <= 6; ++seed) {
     CAPTURE(seed);
-    std::mt19937 random(seed);
-    std::vector<std::uint8_t> inside(block.tets.size());
-    TetMesh kept;
-    kept.positions = block.positions;
-    for (std::size_t t = 0; t < block.tets.size(); ++t) {
-      inside[t] = random() % 2;
-      if (inside[t]) kept.tets.push_back(block.tets[t]);
-    }
+    const auto [inside, kept] = random_half(block, seed);
     const TriangleSoup input = extract_boundary(kept);
     const repair::RepairResult result = repair_tets(block, input, true, inside);
     const check::SurfaceReport r = check::check_surface(result.surface);
@@ -242,14 +252,7 @@ TEST_CASE("when its rounds run out, the manifold fix falls back to filling the s
   int fell_back = 0;
   for (unsigned seed = 1; seed <= 6; ++seed) {
     CAPTURE(seed);
-    std::mt19937 random(seed);
-    std::vector<std::uint8_t> inside(block.tets.size());
-    TetMesh kept;
-    kept.positions = block.positions;
-    for (std::size_t t = 0; t < block.tets.size(); ++t) {
-      inside[t] = random() % 2;
-      if (inside[t]) kept.tets.push_back(block.tets[t]);
-    }
+    const auto [inside, kept] = random_half(block, seed);
     TetMesh mesh = block;
     repair::ManifoldFixOptions options;
     options.max_move = 1e-3;
