@@ -7,6 +7,7 @@
 #include <mr/core/errors.h>
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
+#include <mr/io/text_encoding.h>
 
 #include <nlohmann/json.hpp>
 
@@ -96,7 +97,7 @@ bool add_distances(const io::Registry& registry, const TriangleSoup& surface, co
   const check::DistanceReport to_ref = check::one_sided_distance(surface, reference);
   const check::DistanceReport from_ref = check::one_sided_distance(reference, surface);
   const double bound = o.epsilon * diagonal;
-  report["distance"] = {{"reference", o.reference},
+  report["distance"] = {{"reference", io::as_utf8(o.reference)},
                         {"bbox_diagonal", diagonal},
                         {"epsilon_abs", bound},
                         {"to_reference_max", to_ref.max},
@@ -122,7 +123,7 @@ bool check_file(const std::string& path, const CheckOptions& o, nlohmann::json& 
 
   bool ok = true;
   TriangleSoup surface;
-  report["file"] = path;
+  report["file"] = io::as_utf8(path);  // JSON strings must be UTF-8; file names need not be
   if (volume) {
     const TetMesh mesh = io::read_volume(registry, path);
     const check::TetReport tets = check::check_tets(mesh, surface_options);
