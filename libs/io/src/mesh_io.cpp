@@ -26,6 +26,16 @@ void check_output_path(const std::filesystem::path& path) {
   if (std::filesystem::is_directory(path, ec)) throw UsageError(path.string() + " is a directory");
 }
 
+// An input with nothing to work on is a bad input, not an empty result: a file
+// of random bytes named .obj parses as an OBJ without a single face.
+void check_has_triangles(const TriangleSoup& soup, const std::filesystem::path& path) {
+  if (soup.triangles.empty()) throw InputError(path.string(), "no triangles found");
+}
+
+void check_has_tets(const TetMesh& mesh, const std::filesystem::path& path) {
+  if (mesh.tets.empty()) throw InputError(path.string(), "no tets found");
+}
+
 // Runs a format's reader. Our own errors pass through; anything else a
 // library throws (a parser's exception, out of memory on a hostile size)
 // becomes an InputError naming the file, never a bare library message.
@@ -73,6 +83,7 @@ TetMesh read_volume(const Registry& registry, const std::filesystem::path& path,
   TetMesh mesh = read_guarded(format, path, [&] { return format.read_volume(path, options); });
   if (std::string problem = find_tet_mesh_inconsistency(mesh); !problem.empty())
     throw InputError(path.string(), problem);
+  check_has_tets(mesh, path);
   return mesh;
 }
 
@@ -84,6 +95,7 @@ TriangleSoup read_surface(const Registry& registry, const std::filesystem::path&
   TriangleSoup soup = read_guarded(format, path, [&] { return format.read_surface(path, options); });
   if (std::string problem = find_soup_inconsistency(soup); !problem.empty())
     throw InputError(path.string(), problem);
+  check_has_triangles(soup, path);
   return soup;
 }
 
