@@ -34,6 +34,8 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       "condition holds and no new self-intersection appears (exact test). Boundaries stay within\n"
       "epsilon of the input's boundary curve; non-manifold faces pass through unchanged;\n"
       "copies of a face (double-sided surfaces) are simplified as one and all written out.\n"
+      "Each patch of faces connected through manifold edges is first oriented coherently, the\n"
+      "way most of its area faces; faces that disagreed with it are written reversed.\n"
       "The output is the same for any thread count.";
   auto& s = o.simplify;
   spec.options = {
@@ -63,6 +65,7 @@ nlohmann::json make_stats(const ToolOptions& o, const TriangleSoup& input, const
           {"faces_after", r.faces_after},
           {"kept_aside_faces", r.kept_aside_faces},
           {"duplicate_faces", r.duplicate_faces},
+          {"reoriented_faces", r.reoriented_faces},
           {"locked_vertices", r.locked_vertices},
           {"collapses", r.collapses},
           {"flips", r.flips},
