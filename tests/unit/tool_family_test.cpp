@@ -1,5 +1,6 @@
 // What every tool of the family shares: inputs without geometry are refused
-// the same way by all (the rule lives in the I/O core's read path).
+// the same way by all (the rule lives in the I/O core's read path), and one
+// option vocabulary (-q, -v, -j, --stats).
 
 #include "extract_boundary.h"
 #include "format_convert.h"
@@ -116,4 +117,50 @@ TEST_CASE("an input whose triangles are all degenerate is still geometry", "[too
   INFO(run.err);
   CHECK(run.exit_code == 0);
   CHECK(io::read_surface(io::make_default_registry(), dir / "flat.ply").triangles.size() == 2);
+}
+
+TEST_CASE("every tool takes -q, -v, -j and --stats", "[tools][cli]") {
+  test::TempDir dir("option_vocabulary");
+  const io::Registry registry = io::make_default_registry();
+  io::write_surface(registry, test::cube_soup(), dir / "cube.obj");
+  io::write_volume(registry, test::cube_tets(), dir / "cube.msh");
+  for (const Tool& tool : all_tools()) {
+    INFO(tool.name);
+    const bool reads_volume = tool.main == tools::extract_boundary;
+    const std::filesystem::path in = dir / (reads_volume ? "cube.msh" : "cube.obj");
+    std::vector<std::string> args = arguments(tool, in, dir);
+    const std::string help = test::run_tool(tool.main, {"--help"}).out;
+    for (const char* option : {"-q, --quiet", "-v, --verbose", "-j, --threads N", "--stats FILE"})
+      CHECK_THAT(help, Catch::Contains(option));
+
+    std::vector<std::string> verbose = args;
+    verbose.insert(verbose.end(), {"-v", "-j", "1", "--stats", (dir / "stats.json").string()});
+    const test::ToolRun loud = test::run_tool(tool.main, verbose);
+    INFO(loud.err);
+    CHECK(loud.exit_code == 0);
+    CHECK_FALSE((loud.out + loud.err).empty());
+    CHECK(std::filesystem::file_size(dir / "stats.json") > 2);
+
+    std::vector<std::string> quiet = args;
+    quiet.insert(quiet.end(), {"-q", "-v", "--threads", "2"});
+    const test::ToolRun silent = test::run_tool(tool.main, quiet);
+    INFO(silent.err);
+    CHECK(silent.exit_code == 0);
+    CHECK(silent.out.empty());
+    CHECK(silent.err.empty());
+    std::filesystem::remove(dir / "stats.json");
+  }
+}
+
+TEST_CASE("format-convert -v says which names were not UTF-8", "[tools][utf8]") {
+  test::TempDir dir("verbose_names");
+  test::write_text(dir / "latin1.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl M\xE9tal\nf 1 2 3\n");
+  const std::vector<std::string> args{(dir / "latin1.obj").string(), (dir / "out.ply").string()};
+  CHECK(test::run_format_convert(args).err.empty());  // silent by default
+  std::vector<std::string> verbose = args;
+  verbose.push_back("-v");
+  const test::ToolRun run = test::run_format_convert(verbose);
+  CHECK(run.exit_code == 0);
+  CHECK_THAT(run.err, Catch::Contains("region name 0 is not UTF-8; taken as Windows-1252: M\xC3\xA9tal"));
+  CHECK_THAT(run.out, Catch::Contains("3 vertices, 1 faces"));
 }

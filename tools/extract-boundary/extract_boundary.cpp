@@ -6,6 +6,9 @@
 #include <mr/io/mesh_io.h>
 #include <mr/repair/tet_boundary.h>
 
+#include <nlohmann/json.hpp>
+
+#include <chrono>
 #include <climits>
 #include <ostream>
 
@@ -14,10 +17,26 @@ namespace {
 
 struct ToolOptions {
   repair::BoundaryRequest request;
+  io::WriteOptions write;
+  std::string stats_path;
+  int threads = 0;
   bool label_given = false;
   bool interfaces = false;
   bool quiet = false;
+  bool verbose = false;
 };
+
+struct BoundaryRun {
+  std::size_t tets = 0;
+  std::size_t faces = 0;
+  double seconds_read = 0.0;
+  double seconds_boundary = 0.0;
+  double seconds_write = 0.0;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 cli::ToolSpec make_spec(ToolOptions& o) {
   cli::ToolSpec spec;
@@ -38,9 +57,37 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        }},
       {"--interfaces", "", "", "all interfaces between labels, plus the outer boundary",
        [&](const std::string&) { o.interfaces = true; }},
-      {"--quiet", "-q", "", "print nothing on success", [&](const std::string&) { o.quiet = true; }},
+      cli::ascii_option(o.write.binary),
+      cli::stats_option(o.stats_path, "write tets, boundary faces and seconds per step as JSON"),
+      cli::threads_option(o.threads),
+      cli::quiet_option(o.quiet),
+      cli::verbose_option(o.verbose, "also print the seconds of reading, extracting and writing"),
   };
   return spec;
+}
+
+BoundaryRun run(const ToolOptions& o, const std::vector<std::string>& files) {
+  const io::Registry registry = io::make_default_registry();
+  BoundaryRun r;
+  auto start = std::chrono::steady_clock::now();
+  const TetMesh mesh = io::read_volume(registry, files[0]);
+  r.seconds_read = seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  const TriangleSoup boundary = repair::tet_mesh_boundary(mesh, o.request);
+  r.seconds_boundary = seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  io::write_surface(registry, boundary, files[1], o.write);
+  r.seconds_write = seconds_since(start);
+  r.tets = mesh.tets.size();
+  r.faces = boundary.triangles.size();
+  return r;
+}
+
+nlohmann::json make_stats(const BoundaryRun& r) {
+  return {
+      {"tets", r.tets},
+      {"boundary_faces", r.faces},
+      {"seconds", {{"read", r.seconds_read}, {"boundary", r.seconds_boundary}, {"write", r.seconds_write}}}};
 }
 
 }  // namespace
@@ -53,13 +100,14 @@ int extract_boundary(const std::vector<std::string>& args, std::ostream& out, st
     options.request.mode = options.interfaces    ? repair::BoundaryMode::interfaces
                            : options.label_given ? repair::BoundaryMode::label
                                                  : repair::BoundaryMode::all;
-    const io::Registry registry = io::make_default_registry();
-    const TetMesh mesh = io::read_volume(registry, files[0]);
-    const TriangleSoup boundary = repair::tet_mesh_boundary(mesh, options.request);
-    io::write_surface(registry, boundary, files[1]);
-    if (!options.quiet)
-      out << files[0] << ": " << mesh.tets.size() << " tets -> " << boundary.triangles.size()
-          << " boundary faces\n";
+    BoundaryRun r;
+    cli::run_with_threads(options.threads, [&] { r = run(options, files); });
+    if (!options.stats_path.empty()) cli::write_stats_file(options.stats_path, make_stats(r).dump(2));
+    if (options.quiet) return;
+    out << files[0] << ": " << r.tets << " tets -> " << r.faces << " boundary faces\n";
+    if (options.verbose)
+      err << "extract-boundary: read " << r.seconds_read << " s, boundary " << r.seconds_boundary
+          << " s, write " << r.seconds_write << " s\n";
   });
 }
 

@@ -1,6 +1,8 @@
 #include <mr/cli/run_tool.h>
 #include <mr/core/errors.h>
 
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <fstream>
 #include <new>
@@ -9,6 +11,11 @@
 namespace mr::cli {
 
 std::string version_string() { return MR_VERSION; }
+
+void run_with_threads(int threads, const std::function<void()>& body) {
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute(body);
+}
 
 std::vector<std::string> arguments(int argc, char** argv) {
   return std::vector<std::string>(argv + std::min(argc, 1), argv + argc);
