@@ -1,9 +1,14 @@
 #include "test_support.h"
 
 #include <mr/cli/options.h>
+#include <mr/cli/run_tool.h>
 #include <mr/core/errors.h>
 
 #include <catch2/catch.hpp>
+
+#include <new>
+#include <sstream>
+#include <stdexcept>
 
 using namespace mr;
 
@@ -39,4 +44,31 @@ TEST_CASE("format-convert answers --help, --version and bad usage", "[cli][forma
   auto unknown = test::run_format_convert({"a.stl", "b.stl", "--frobnicate"});
   CHECK(unknown.exit_code == 2);
   CHECK_THAT(unknown.err, Catch::Contains("--frobnicate"));
+}
+
+TEST_CASE("run_tool names the files and hides a library's raw message", "[cli]") {
+  const cli::ToolSpec spec{"tool", "does things", {"IN", "OUT"}, "", {}};
+  std::ostringstream out, err;
+  const auto library_throws = [](const std::vector<std::string>&) {
+    throw std::runtime_error("[json.exception.type_error.316] invalid UTF-8 byte at index 9: 0x6B");
+  };
+  CHECK(cli::run_tool(spec, {"in.obj", "out.glb"}, out, err, library_throws) == cli::exit_failure);
+  CHECK(
+      err.str() ==
+      "tool: error: in.obj -> out.glb: the run failed on an unexpected library error: invalid UTF-8 byte at "
+      "index 9: 0x6B\n");
+  err.str("");
+  const auto out_of_memory = [](const std::vector<std::string>&) { throw std::bad_alloc(); };
+  CHECK(cli::run_tool(spec, {"in.obj", "out.glb"}, out, err, out_of_memory) == cli::exit_failure);
+  CHECK(err.str() == "tool: error: in.obj -> out.glb: out of memory\n");
+  err.str("");
+  const auto bad_input = [](const std::vector<std::string>&) {
+    throw InputError("in.obj", "no triangles found");
+  };
+  CHECK(cli::run_tool(spec, {"in.obj", "out.glb"}, out, err, bad_input) == cli::exit_bad_input);
+  CHECK(err.str() == "tool: error: in.obj: no triangles found\n");
+  err.str("");
+  const auto failed_run = [](const std::vector<std::string>&) { throw RunError("cannot write out.glb"); };
+  CHECK(cli::run_tool(spec, {"in.obj", "out.glb"}, out, err, failed_run) == cli::exit_failure);
+  CHECK(err.str() == "tool: error: cannot write out.glb\n");
 }

@@ -7,12 +7,15 @@
 #include <mr/io/mesh_io.h>
 #include <mr/io/output_file.h>
 #include <mr/io/text_cursor.h>
+#include <mr/io/text_encoding.h>
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <new>
+#include <stdexcept>
 
 using namespace mr;
 
@@ -188,4 +191,57 @@ TEST_CASE("text cursor never reads past the end and checks counts before allocat
   CHECK(cursor.remaining() == 1);
   CHECK(std::isinf(io::TextCursor("big.msh", "1e999").real("x")));  // the I/O core rejects it later
   CHECK(io::quoted(std::string(50, '\x01')) == "'" + std::string(40, '?') + "...'");
+}
+
+TEST_CASE("names become UTF-8: kept where they are, read as Windows-1252 where not", "[io][utf8]") {
+  CHECK(io::as_utf8("plain name") == "plain name");
+  CHECK(io::as_utf8("caf\xC3\xA9") == "caf\xC3\xA9");  // already UTF-8
+  CHECK(io::as_utf8("caf\xE9") == "caf\xC3\xA9");      // Latin-1 e acute
+  CHECK(io::as_utf8("\xE9"
+                    "k") ==
+        "\xC3\xA9"
+        "k");                                                    // a lead byte followed by 0x6B
+  CHECK(io::as_utf8("\x80\x99") == "\xE2\x82\xAC\xE2\x84\xA2");  // Windows-1252 euro and trade mark
+  CHECK(io::as_utf8("\x81") == "\xC2\x81");                      // unassigned in Windows-1252: the C1 control
+  CHECK(io::as_utf8("\xC0\xAF") == "\xC3\x80\xC2\xAF");          // an overlong '/' is not UTF-8
+  CHECK(io::as_utf8("\xED\xA0\x80") == "\xC3\xAD\xC2\xA0\xE2\x82\xAC");  // nor is a surrogate
+  CHECK(io::as_utf8("\xF0\x9F\x99\x82 \xF0\x9F") ==
+        "\xF0\x9F\x99\x82 \xC3\xB0\xC5\xB8");  // a cut 4-byte sequence
+  std::string every_byte;
+  for (int b = 1; b < 256; ++b) every_byte.push_back(static_cast<char>(b));
+  CHECK_FALSE(io::is_utf8(every_byte));
+  CHECK(io::is_utf8(io::as_utf8(every_byte)));
+  CHECK(io::as_utf8(io::as_utf8(every_byte)) == io::as_utf8(every_byte));
+}
+
+TEST_CASE("a library's exception in a reader or writer becomes an error naming the file", "[io]") {
+  io::Registry registry;
+  io::Format lib;
+  lib.name = "lib";
+  lib.extensions = {".lib"};
+  lib.read_surface = [](const std::filesystem::path&, const io::ReadOptions&) -> TriangleSoup {
+    throw std::out_of_range("[json.exception.out_of_range.401] array index 3 is out of range");
+  };
+  lib.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path,
+                         const io::WriteOptions&) {
+    std::ofstream(path) << "partial";
+    if (soup.num_vertices() == 3) throw std::bad_alloc();
+    throw std::runtime_error("[json.exception.type_error.316] invalid UTF-8 byte at index 9: 0x6B");
+  };
+  registry.add(lib);
+  test::TempDir dir("io_library_errors");
+  test::write_text(dir / "in.lib", "x");
+  CHECK_THROWS_AS(io::read_surface(registry, dir / "in.lib"), InputError);
+  CHECK_THROWS_WITH(io::read_surface(registry, dir / "in.lib"),
+                    (dir / "in.lib").string() + ": cannot be read as lib: array index 3 is out of range");
+  const TriangleSoup cube = test::cube_soup();
+  CHECK_THROWS_AS(io::write_surface(registry, cube, dir / "out.lib"), RunError);
+  CHECK_THROWS_WITH(
+      io::write_surface(registry, cube, dir / "out.lib"),
+      "cannot write " + (dir / "out.lib").string() + " as lib: invalid UTF-8 byte at index 9: 0x6B");
+  TriangleSoup triangle;
+  triangle.positions = {Vec3d(0, 0, 0), Vec3d(1, 0, 0), Vec3d(0, 1, 0)};
+  triangle.triangles = {{0, 1, 2}};
+  CHECK_THROWS_WITH(io::write_surface(registry, triangle, dir / "out.lib"), Catch::Contains("out of memory"));
+  CHECK(dir.files() == std::vector<std::string>{"in.lib"});  // no output, no temporary file
 }

@@ -351,3 +351,20 @@ TEST_CASE("writers throw RunError when the stream fails", "[openmesh]") {
     if (std::filesystem::exists("/dev/full")) CHECK_THROWS_AS(format->write_surface(soup, "/dev/full", {}), RunError);
   }
 }
+
+TEST_CASE("OBJ and PLY write region names as UTF-8, Latin-1 ones decoded", "[openmesh][utf8]") {
+  test::TempDir dir("obj_ply_utf8_names");
+  TriangleSoup cube = test::cube_soup();
+  cube.face_regions = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2};
+  cube.region_names = {"M\xE9tal",
+                       "\xE9"
+                       "k",
+                       "d\xC3\xA9j\xC3\xA0 UTF-8"};
+  const std::vector<std::string> utf8_names{"M\xC3\xA9tal",
+                                            "\xC3\xA9"
+                                            "k",
+                                            "d\xC3\xA9j\xC3\xA0 UTF-8"};
+  CHECK(round_trip(cube, dir, "names.obj").region_names == utf8_names);
+  CHECK(round_trip(cube, dir, "names.ply").region_names == utf8_names);
+  CHECK(round_trip(cube, dir, "names_ascii.ply", false).region_names == utf8_names);
+}

@@ -9,6 +9,9 @@
 #include <mr/repair/round_to_grid.h>
 #include <mr/repair/tet_boundary.h>
 
+#include <nlohmann/json.hpp>
+
+#include <chrono>
 #include <climits>
 #include <ostream>
 
@@ -17,10 +20,26 @@ namespace {
 
 struct ToolOptions {
   repair::BoundaryRequest request;
+  io::WriteOptions write;
+  std::string stats_path;
+  int threads = 0;
   bool label_given = false;
   bool interfaces = false;
   bool quiet = false;
+  bool verbose = false;
 };
+
+struct BoundaryRun {
+  std::size_t tets = 0;
+  std::size_t faces = 0;
+  double seconds_read = 0.0;
+  double seconds_boundary = 0.0;
+  double seconds_write = 0.0;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 cli::ToolSpec make_spec(ToolOptions& o) {
   cli::ToolSpec spec;
@@ -41,7 +60,11 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        }},
       {"--interfaces", "", "", "all interfaces between labels, plus the outer boundary",
        [&](const std::string&) { o.interfaces = true; }},
-      {"--quiet", "-q", "", "print nothing on success", [&](const std::string&) { o.quiet = true; }},
+      cli::ascii_option(o.write.binary),
+      cli::stats_option(o.stats_path, "write tets, boundary faces and seconds per step as JSON"),
+      cli::threads_option(o.threads),
+      cli::quiet_option(o.quiet),
+      cli::verbose_option(o.verbose, "also print the seconds of reading, extracting and writing"),
   };
   return spec;
 }
@@ -50,9 +73,10 @@ cli::ToolSpec make_spec(ToolOptions& o) {
 // its vertices go onto the grid the format stores (repair::round_to_grid),
 // and the file is read back and checked before it is renamed into place.
 // Other boundaries (open, pinched, interfaces) are written as they are.
-void write_boundary(const io::Registry& registry, TriangleSoup boundary, const std::string& path, bool interfaces) {
+void write_boundary(const io::Registry& registry, TriangleSoup boundary, const std::string& path, bool interfaces,
+                    io::WriteOptions options) {
   if (interfaces || boundary.triangles.empty() || !check::check_surface(boundary).watertight()) {
-    io::write_surface(registry, boundary, path);
+    io::write_surface(registry, boundary, path, options);
     return;
   }
   Vec3d lo = boundary.positions.front(), hi = lo;
@@ -60,11 +84,34 @@ void write_boundary(const io::Registry& registry, TriangleSoup boundary, const s
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  io::WriteOptions options;
   const CoordinateGrid grid = io::surface_position_grid(registry, path, options, lo, hi);
   if (grid.kind() == CoordinateGrid::Kind::quantized) options.draco.position_grid = grid.quantization();
   repair::round_to_grid(boundary, grid);
   io::write_surface(registry, boundary, path, options, check::watertight_file_check(registry, path));
+}
+
+BoundaryRun run(const ToolOptions& o, const std::vector<std::string>& files) {
+  const io::Registry registry = io::make_default_registry();
+  BoundaryRun r;
+  auto start = std::chrono::steady_clock::now();
+  const TetMesh mesh = io::read_volume(registry, files[0]);
+  r.seconds_read = seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  const TriangleSoup boundary = repair::tet_mesh_boundary(mesh, o.request);
+  r.seconds_boundary = seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  write_boundary(registry, boundary, files[1], o.interfaces, o.write);
+  r.seconds_write = seconds_since(start);
+  r.tets = mesh.tets.size();
+  r.faces = boundary.triangles.size();
+  return r;
+}
+
+nlohmann::json make_stats(const BoundaryRun& r) {
+  return {
+      {"tets", r.tets},
+      {"boundary_faces", r.faces},
+      {"seconds", {{"read", r.seconds_read}, {"boundary", r.seconds_boundary}, {"write", r.seconds_write}}}};
 }
 
 }  // namespace
@@ -77,13 +124,14 @@ int extract_boundary(const std::vector<std::string>& args, std::ostream& out, st
     options.request.mode = options.interfaces    ? repair::BoundaryMode::interfaces
                            : options.label_given ? repair::BoundaryMode::label
                                                  : repair::BoundaryMode::all;
-    const io::Registry registry = io::make_default_registry();
-    const TetMesh mesh = io::read_volume(registry, files[0]);
-    const TriangleSoup boundary = repair::tet_mesh_boundary(mesh, options.request);
-    write_boundary(registry, boundary, files[1], options.interfaces);
-    if (!options.quiet)
-      out << files[0] << ": " << mesh.tets.size() << " tets -> " << boundary.triangles.size()
-          << " boundary faces\n";
+    BoundaryRun r;
+    cli::run_with_threads(options.threads, [&] { r = run(options, files); });
+    if (!options.stats_path.empty()) cli::write_stats_file(options.stats_path, make_stats(r).dump(2));
+    if (options.quiet) return;
+    out << files[0] << ": " << r.tets << " tets -> " << r.faces << " boundary faces\n";
+    if (options.verbose)
+      err << "extract-boundary: read " << r.seconds_read << " s, boundary " << r.seconds_boundary
+          << " s, write " << r.seconds_write << " s\n";
   });
 }
 

@@ -4,7 +4,12 @@
 #include <mr/core/errors.h>
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
+#include <mr/io/text_encoding.h>
 
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <ostream>
 #include <sstream>
 
 namespace mr::tools {
@@ -13,7 +18,24 @@ namespace {
 struct ConvertOptions {
   io::ReadOptions read;
   io::WriteOptions write;
+  std::string stats_path;
+  int threads = 0;
+  bool quiet = false;
+  bool verbose = false;
 };
+
+// What was converted, for -v and --stats.
+struct ConvertReport {
+  bool volume = false;
+  std::size_t vertices = 0;
+  std::size_t elements = 0;  // tets of a volume, triangles of a surface
+  double seconds_read = 0.0;
+  double seconds_write = 0.0;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 std::string format_table(const io::Registry& registry) {
   std::ostringstream out;
@@ -44,8 +66,7 @@ cli::ToolSpec make_spec(ConvertOptions& o, const io::Registry& registry) {
        [&](const std::string& v) { o.read.format = v; }},
       {"--to", "", "FORMAT", "write OUT as FORMAT whatever its extension",
        [&](const std::string& v) { w.format = v; }},
-      {"--ascii", "", "", "write the text variant of STL, PLY and MSH (default: binary)",
-       [&](const std::string&) { w.binary = false; }},
+      cli::ascii_option(w.binary),
       {"--msh-version", "", "V", "MSH version to write: 4.1 (default) or 2.2",
        [&](const std::string& v) {
          if (v != "4.1" && v != "2.2") throw UsageError("--msh-version must be 4.1 or 2.2");
@@ -71,21 +92,59 @@ cli::ToolSpec make_spec(ConvertOptions& o, const io::Registry& registry) {
        [&](const std::string& v) { o.read.level_set.isovalue = parse_double("--isovalue", v); }},
       {"--adaptivity", "", "A", "level set to mesh: 0 uniform (default) to 1 most simplified",
        [&](const std::string& v) { o.read.level_set.adaptivity = parse_double("--adaptivity", v); }},
+      cli::stats_option(o.stats_path, "write counts and seconds of reading and writing as JSON"),
+      cli::threads_option(o.threads),
+      cli::quiet_option(o.quiet),
+      cli::verbose_option(o.verbose, "print what was read and written, and names that were not UTF-8"),
   };
   return spec;
 }
 
-void convert(const io::Registry& registry, const std::string& in, const std::string& out,
-             const ConvertOptions& o) {
+// Names that are not UTF-8 are written decoded as Windows-1252 (io::as_utf8);
+// with -v the tool says which.
+void note_names_not_utf8(const TriangleSoup& soup, const std::string& in, std::ostream& err) {
+  for (std::size_t r = 0; r < soup.region_names.size(); ++r)
+    if (!io::is_utf8(soup.region_names[r]))
+      err << "format-convert: " << in << ": region name " << r
+          << " is not UTF-8; taken as Windows-1252: " << io::as_utf8(soup.region_names[r]) << "\n";
+}
+
+ConvertReport convert(const io::Registry& registry, const std::string& in, const std::string& out,
+                      const ConvertOptions& o, std::ostream& err) {
   const bool volume_in = io::is_volume_format(registry, in, o.read.format);
   const bool volume_out = registry.resolve_for_write(out, o.write.format).kind == io::MeshKind::volume;
   if (volume_out && !volume_in)
     throw UsageError("cannot write the surface " + in + " as a volume mesh: use tetrahedralize");
+  ConvertReport report;
+  report.volume = volume_out;
+  auto start = std::chrono::steady_clock::now();
   if (volume_out) {
-    io::write_volume(registry, io::read_volume(registry, in, o.read), out, o.write);
-    return;
+    const TetMesh mesh = io::read_volume(registry, in, o.read);
+    report.seconds_read = seconds_since(start);
+    report.vertices = mesh.positions.size();
+    report.elements = mesh.tets.size();
+    start = std::chrono::steady_clock::now();
+    io::write_volume(registry, mesh, out, o.write);
+  } else {
+    const TriangleSoup soup = io::read_surface(registry, in, o.read);
+    report.seconds_read = seconds_since(start);
+    report.vertices = soup.positions.size();
+    report.elements = soup.triangles.size();
+    if (o.verbose && !o.quiet) note_names_not_utf8(soup, in, err);
+    start = std::chrono::steady_clock::now();
+    io::write_surface(registry, soup, out, o.write);
   }
-  io::write_surface(registry, io::read_surface(registry, in, o.read), out, o.write);
+  report.seconds_write = seconds_since(start);
+  return report;
+}
+
+nlohmann::json make_stats(const std::string& in, const std::string& out, const ConvertReport& r) {
+  return {{"input", io::as_utf8(in)},
+          {"output", io::as_utf8(out)},
+          {"kind", r.volume ? "volume" : "surface"},
+          {"vertices", r.vertices},
+          {r.volume ? "tets" : "faces", r.elements},
+          {"seconds", {{"read", r.seconds_read}, {"write", r.seconds_write}}}};
 }
 
 }  // namespace
@@ -95,7 +154,15 @@ int format_convert(const std::vector<std::string>& args, std::ostream& out, std:
   ConvertOptions options;
   const cli::ToolSpec spec = make_spec(options, registry);
   return cli::run_tool(spec, args, out, err, [&](const std::vector<std::string>& files) {
-    convert(registry, files[0], files[1], options);
+    cli::run_with_threads(options.threads, [&] {
+      const ConvertReport report = convert(registry, files[0], files[1], options, err);
+      if (!options.stats_path.empty())
+        cli::write_stats_file(options.stats_path, make_stats(files[0], files[1], report).dump(2));
+      if (options.verbose && !options.quiet)
+        out << files[0] << " -> " << files[1] << ": " << report.vertices << " vertices, " << report.elements
+            << (report.volume ? " tets" : " faces") << " (read " << report.seconds_read << " s, write "
+            << report.seconds_write << " s)\n";
+    });
   });
 }
 

@@ -7,9 +7,11 @@
 #include <mr/core/errors.h>
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
+#include <mr/io/text_encoding.h>
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <ostream>
@@ -22,9 +24,13 @@ enum class Expectation { automatic, watertight, valid_tets, none };
 struct CheckOptions {
   std::string reference;  // input the mesh was made from, for distances
   double epsilon = 1e-3;  // relative to the reference's bbox diagonal
+  double epsilon_abs = 0.0;  // absolute; overrides epsilon when > 0
   bool self_intersections = true;
   Expectation expect = Expectation::automatic;
   std::string json_path;
+  int threads = 0;
+  bool quiet = false;
+  bool verbose = false;
 };
 
 nlohmann::json to_json(const check::SurfaceReport& r) {
@@ -74,16 +80,27 @@ cli::ToolSpec make_spec(CheckOptions& o) {
        [&](const std::string& v) { o.reference = v; }},
       {"--epsilon", "-e", "EPS", "distance bound relative to the reference's bbox diagonal (default 1e-3)",
        [&](const std::string& v) { o.epsilon = cli::parse_double("--epsilon", v); }},
+      {"--epsilon-abs", "", "EPS", "absolute distance bound (overrides --epsilon)",
+       [&](const std::string& v) { o.epsilon_abs = cli::parse_double("--epsilon-abs", v); }},
       {"--no-self-intersections", "", "", "skip the exact self-intersection test",
        [&](const std::string&) { o.self_intersections = false; }},
       {"--expect", "", "WHAT", "watertight, valid-tets or none (default: by file kind)",
        [&](const std::string& v) {
-         if (v == "watertight") o.expect = Expectation::watertight;
-         else if (v == "valid-tets") o.expect = Expectation::valid_tets;
-         else if (v == "none") o.expect = Expectation::none;
-         else throw UsageError("--expect must be watertight, valid-tets or none");
+         if (v == "watertight")
+           o.expect = Expectation::watertight;
+         else if (v == "valid-tets")
+           o.expect = Expectation::valid_tets;
+         else if (v == "none")
+           o.expect = Expectation::none;
+         else
+           throw UsageError("--expect must be watertight, valid-tets or none");
        }},
       {"--json", "", "FILE", "also write the report to FILE", [&](const std::string& v) { o.json_path = v; }},
+      cli::stats_option(o.json_path, "the same as --json (the family's name for a tool's figures)"),
+      cli::threads_option(o.threads),
+      {"--quiet", "-q", "", "print no report; the exit code says whether the mesh meets the expectation",
+       [&](const std::string&) { o.quiet = true; }},
+      cli::verbose_option(o.verbose, "also print the seconds of reading and checking"),
   };
   return spec;
 }
@@ -95,20 +112,20 @@ bool add_distances(const io::Registry& registry, const TriangleSoup& surface, co
   const double diagonal = bounding_box_diagonal(reference);
   const check::DistanceReport to_ref = check::one_sided_distance(surface, reference);
   const check::DistanceReport from_ref = check::one_sided_distance(reference, surface);
-  const double bound = o.epsilon * diagonal;
-  report["distance"] = {{"reference", o.reference},
-                        {"bbox_diagonal", diagonal},
-                        {"epsilon_abs", bound},
-                        {"to_reference_max", to_ref.max},
-                        {"to_reference_mean", to_ref.mean},
-                        {"to_reference_farthest", {to_ref.farthest.x(), to_ref.farthest.y(), to_ref.farthest.z()}},
-                        {"from_reference_max", from_ref.max},
-                        {"from_reference_farthest",
-                         {from_ref.farthest.x(), from_ref.farthest.y(), from_ref.farthest.z()}},
-                        {"from_reference_mean", from_ref.mean},
-                        {"to_reference_max_rel", diagonal > 0 ? to_ref.max / diagonal : 0.0},
-                        {"from_reference_max_rel", diagonal > 0 ? from_ref.max / diagonal : 0.0},
-                        {"samples", to_ref.samples + from_ref.samples}};
+  const double bound = o.epsilon_abs > 0.0 ? o.epsilon_abs : o.epsilon * diagonal;
+  report["distance"] = {
+      {"reference", io::as_utf8(o.reference)},
+      {"bbox_diagonal", diagonal},
+      {"epsilon_abs", bound},
+      {"to_reference_max", to_ref.max},
+      {"to_reference_mean", to_ref.mean},
+      {"to_reference_farthest", {to_ref.farthest.x(), to_ref.farthest.y(), to_ref.farthest.z()}},
+      {"from_reference_max", from_ref.max},
+      {"from_reference_farthest", {from_ref.farthest.x(), from_ref.farthest.y(), from_ref.farthest.z()}},
+      {"from_reference_mean", from_ref.mean},
+      {"to_reference_max_rel", diagonal > 0 ? to_ref.max / diagonal : 0.0},
+      {"from_reference_max_rel", diagonal > 0 ? from_ref.max / diagonal : 0.0},
+      {"samples", to_ref.samples + from_ref.samples}};
   return to_ref.max <= bound;
 }
 
@@ -122,7 +139,7 @@ bool check_file(const std::string& path, const CheckOptions& o, nlohmann::json& 
 
   bool ok = true;
   TriangleSoup surface;
-  report["file"] = path;
+  report["file"] = io::as_utf8(path);  // JSON strings must be UTF-8; file names need not be
   if (volume) {
     const TetMesh mesh = io::read_volume(registry, path);
     const check::TetReport tets = check::check_tets(mesh, surface_options);
@@ -144,6 +161,10 @@ bool check_file(const std::string& path, const CheckOptions& o, nlohmann::json& 
   return ok;
 }
 
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 }  // namespace
 
 int mesh_check(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -151,10 +172,14 @@ int mesh_check(const std::vector<std::string>& args, std::ostream& out, std::ost
   const cli::ToolSpec spec = make_spec(options);
   bool ok = true;
   const int code = cli::run_tool(spec, args, out, err, [&](const std::vector<std::string>& files) {
+    if (options.epsilon_abs < 0.0) throw UsageError("--epsilon-abs must be >= 0");
     nlohmann::json report;
-    ok = check_file(files[0], options, report);
-    out << report.dump(2) << "\n";
-    if (!options.json_path.empty()) std::ofstream(options.json_path) << report.dump(2) << "\n";
+    const auto start = std::chrono::steady_clock::now();
+    cli::run_with_threads(options.threads, [&] { ok = check_file(files[0], options, report); });
+    if (!options.quiet) out << report.dump(2) << "\n";
+    if (!options.json_path.empty()) cli::write_stats_file(options.json_path, report.dump(2));
+    if (options.verbose && !options.quiet)
+      err << "mesh-check: " << files[0] << " read and checked in " << seconds_since(start) << " s\n";
   });
   return code == cli::exit_ok && !ok ? int(cli::exit_failure) : code;
 }

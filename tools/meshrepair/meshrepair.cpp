@@ -56,13 +56,15 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       {"--epsilon-abs", "", "EPS", "absolute envelope radius (overrides --epsilon)",
        [&](const std::string& v) { t.epsilon_abs = parse_double("--epsilon-abs", v); }},
       {"--lattice", "", "H",
-       "voxel-stuffing lattice spacing of the background mesh relative to the bbox diagonal (default 0: none)",
+       "voxel-stuffing lattice spacing of the background mesh relative to the bbox diagonal (default 0: "
+       "none)",
        [&](const std::string& v) { t.lattice_spacing_rel = cli::parse_double("--lattice", v); }},
       {"--snap", "", "F",
        "snap the input to a grid of F times epsilon (a power of two at most) before inserting it "
        "(default 1e-3, at most 0.01; 0: insert the coordinates as they are)",
        [&](const std::string& v) { t.snap_fraction = cli::parse_double("--snap", v); }},
-      {"--skip-simplify", "", "", "insert the input as it is, without simplifying it inside the envelope first",
+      {"--skip-simplify", "", "",
+       "insert the input as it is, without simplifying it inside the envelope first",
        [&](const std::string&) { t.skip_simplify = true; }},
       {"--no-cleanup", "", "", "keep the peeled surface as it is (no collapses or flips)",
        [&](const std::string&) { o.cleanup = false; }},
@@ -71,17 +73,13 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       {"--draco-position-bits", "", "N",
        "Draco position quantization bits (default: a grid step of at most epsilon/64, 12 to 30 bits)",
        [&](const std::string& v) { o.draco_position_bits = cli::parse_int("--draco-position-bits", v, 1, 30); }},
-      {"--ascii", "", "", "ASCII instead of binary where the format has both (STL, PLY)",
-       [&](const std::string&) { o.write.binary = false; }},
-      {"--stats", "", "FILE",
-       "write input defects, output figures (faces, genus, volume, Hausdorff distances both ways) "
-       "and seconds per stage as JSON",
-       [&](const std::string& v) { o.stats_path = v; }},
-      {"--threads", "-j", "N", "worker threads (default: all)",
-       [&](const std::string& v) { t.threads = cli::parse_int("--threads", v, 1, 1024); }},
-      {"--quiet", "-q", "", "print nothing on success", [&](const std::string&) { o.quiet = true; }},
-      {"--verbose", "-v", "", "also print each stage as it starts and ends",
-       [&](const std::string&) { o.verbose = true; }},
+      cli::ascii_option(o.write.binary),
+      cli::stats_option(o.stats_path,
+                        "write input defects, output figures (faces, genus, volume, Hausdorff distances both "
+                        "ways) and seconds per stage as JSON"),
+      cli::threads_option(t.threads),
+      cli::quiet_option(o.quiet),
+      cli::verbose_option(o.verbose, "also print each stage as it starts and ends"),
   };
   return spec;
 }

@@ -16,8 +16,10 @@ namespace {
 
 struct ToolOptions {
   simplify::SimplifyOptions simplify;
+  io::WriteOptions write;
   std::string stats_path;
   bool quiet = false;
+  bool verbose = false;
 };
 
 cli::ToolSpec make_spec(ToolOptions& o) {
@@ -34,6 +36,8 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       "condition holds and no new self-intersection appears (exact test). Boundaries stay within\n"
       "epsilon of the input's boundary curve; non-manifold faces pass through unchanged;\n"
       "copies of a face (double-sided surfaces) are simplified as one and all written out.\n"
+      "Each patch of faces connected through manifold edges is first oriented coherently, the\n"
+      "way most of its area faces; faces that disagreed with it are written reversed.\n"
       "The output is the same for any thread count.";
   auto& s = o.simplify;
   spec.options = {
@@ -42,16 +46,19 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       {"--epsilon-abs", "", "EPS", "absolute envelope radius (overrides --epsilon)",
        [&](const std::string& v) { s.epsilon_abs = parse_double("--epsilon-abs", v); }},
       {"--target-faces", "", "N", "stop at N faces (default: as few as the envelope allows)",
-       [&](const std::string& v) { s.target_faces = std::size_t(parse_int("--target-faces", v, 0, 2147483647)); }},
+       [&](const std::string& v) {
+         s.target_faces = std::size_t(parse_int("--target-faces", v, 0, 2147483647));
+       }},
       {"--max-normal-deviation", "", "DEG", "largest normal change of a face per operation (default 60)",
        [&](const std::string& v) { s.max_normal_deviation_deg = parse_double("--max-normal-deviation", v); }},
       {"--flip-passes", "", "N", "sweeps of edge flips after collapsing (default 3, 0 = none)",
        [&](const std::string& v) { s.flip_passes = parse_int("--flip-passes", v, 0, 1000); }},
-      {"--stats", "", "FILE", "write faces, timings, epsilon and measured distance as JSON",
-       [&](const std::string& v) { o.stats_path = v; }},
-      {"--threads", "-j", "N", "worker threads (default: all)",
-       [&](const std::string& v) { s.threads = parse_int("--threads", v, 1, 1024); }},
-      {"--quiet", "-q", "", "print nothing on success", [&](const std::string&) { o.quiet = true; }},
+      cli::ascii_option(o.write.binary),
+      cli::stats_option(o.stats_path, "write faces, timings, epsilon and measured distance as JSON"),
+      cli::threads_option(s.threads),
+      cli::quiet_option(o.quiet),
+      cli::verbose_option(o.verbose,
+                          "also print what was kept aside or locked, and the seconds of each phase"),
   };
   return spec;
 }
@@ -59,20 +66,31 @@ cli::ToolSpec make_spec(ToolOptions& o) {
 nlohmann::json make_stats(const ToolOptions& o, const TriangleSoup& input, const simplify::SimplifyResult& r) {
   const check::DistanceReport distance = check::one_sided_distance(r.soup, input);
   const double diagonal = bounding_box_diagonal(input);
-  return {{"faces_before", r.faces_before},
-          {"faces_after", r.faces_after},
-          {"kept_aside_faces", r.kept_aside_faces},
-          {"duplicate_faces", r.duplicate_faces},
-          {"locked_vertices", r.locked_vertices},
-          {"collapses", r.collapses},
-          {"flips", r.flips},
-          {"epsilon_rel", o.simplify.epsilon_abs > 0.0 && diagonal > 0.0 ? r.epsilon / diagonal : o.simplify.epsilon_rel},
-          {"epsilon_abs", r.epsilon},
-          {"bbox_diagonal", diagonal},
-          {"seconds", {{"setup", r.seconds_setup}, {"collapse", r.seconds_collapse}, {"flip", r.seconds_flip}}},
-          {"distance_to_input_max", distance.max},
-          {"distance_to_input_mean", distance.mean},
-          {"distance_samples", distance.samples}};
+  return {
+      {"faces_before", r.faces_before},
+      {"faces_after", r.faces_after},
+      {"kept_aside_faces", r.kept_aside_faces},
+      {"duplicate_faces", r.duplicate_faces},
+      {"reoriented_faces", r.reoriented_faces},
+      {"locked_vertices", r.locked_vertices},
+      {"collapses", r.collapses},
+      {"flips", r.flips},
+      {"epsilon_rel",
+       o.simplify.epsilon_abs > 0.0 && diagonal > 0.0 ? r.epsilon / diagonal : o.simplify.epsilon_rel},
+      {"epsilon_abs", r.epsilon},
+      {"bbox_diagonal", diagonal},
+      {"seconds", {{"setup", r.seconds_setup}, {"collapse", r.seconds_collapse}, {"flip", r.seconds_flip}}},
+      {"distance_to_input_max", distance.max},
+      {"distance_to_input_mean", distance.mean},
+      {"distance_samples", distance.samples}};
+}
+
+void print_details(const simplify::SimplifyResult& r, std::ostream& err) {
+  err << "simplify-in-envelope: " << r.reoriented_faces
+      << " faces reversed to orient their patch coherently, " << r.kept_aside_faces << " faces kept aside, "
+      << r.duplicate_faces << " copies of other faces, " << r.locked_vertices << " vertices locked\n"
+      << "simplify-in-envelope: setup " << r.seconds_setup << " s, collapses " << r.seconds_collapse
+      << " s, flips " << r.seconds_flip << " s\n";
 }
 
 }  // namespace
@@ -84,13 +102,15 @@ int simplify_in_envelope(const std::vector<std::string>& args, std::ostream& out
     const io::Registry registry = io::make_default_registry();
     const TriangleSoup input = io::read_surface(registry, files[0]);
     const simplify::SimplifyResult result = simplify::simplify_in_envelope(input, options.simplify);
-    io::write_surface(registry, result.soup, files[1]);
+    io::write_surface(registry, result.soup, files[1], options.write);
     if (!options.stats_path.empty()) {
       cli::write_stats_file(options.stats_path, make_stats(options, input, result).dump(2));
     }
-    if (!options.quiet)
-      out << files[0] << ": " << result.faces_before << " -> " << result.faces_after << " faces ("
-          << result.collapses << " collapses, " << result.flips << " flips, epsilon " << result.epsilon << ")\n";
+    if (options.quiet) return;
+    out << files[0] << ": " << result.faces_before << " -> " << result.faces_after << " faces ("
+        << result.collapses << " collapses, " << result.flips << " flips, epsilon " << result.epsilon
+        << ")\n";
+    if (options.verbose) print_details(result, err);
   });
 }
 

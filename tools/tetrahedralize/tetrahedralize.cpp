@@ -50,10 +50,12 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        [&](const std::string& v) { t.edge_length_rel = parse_double("--edge-length", v); }},
       {"--edge-length-abs", "", "LEN", "absolute target edge length (overrides --edge-length)",
        [&](const std::string& v) { t.edge_length_abs = parse_double("--edge-length-abs", v); }},
-      {"--lattice", "", "H", "voxel-stuffing lattice spacing relative to the bbox diagonal (default 0.05; 0: none)",
+      {"--lattice", "", "H",
+       "voxel-stuffing lattice spacing relative to the bbox diagonal (default 0.05; 0: none)",
        [&](const std::string& v) { t.lattice_spacing_rel = parse_double("--lattice", v); }},
       {"--lattice-clearance", "", "D",
-       "drop lattice points closer than D (relative to the bbox diagonal, > epsilon) to the input (default 0.025)",
+       "drop lattice points closer than D (relative to the bbox diagonal, > epsilon) to the input (default "
+       "0.025)",
        [&](const std::string& v) { t.lattice_clearance_rel = parse_double("--lattice-clearance", v); }},
       {"--stop-energy", "", "E", "improve until the largest AMIPS energy is below E (default 10)",
        [&](const std::string& v) { t.stop_energy = parse_double("--stop-energy", v); }},
@@ -64,7 +66,8 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        }},
       {"--positive-winding", "", "", "keep only tets with winding number > 1/2 (default |w| > 1/2)",
        [&](const std::string&) { t.winding_rule = tetmesh::WindingRule::positive; }},
-      {"--no-filter", "", "", "keep every tet, labelled by region (tets connected without crossing the input)",
+      {"--no-filter", "", "",
+       "keep every tet, labelled by region (tets connected without crossing the input)",
        [&](const std::string&) { o.pipeline.filter = false; }},
       {"--snap", "", "F",
        "snap the input to a grid of F times epsilon (a power of two at most) before inserting it "
@@ -79,15 +82,13 @@ cli::ToolSpec make_spec(ToolOptions& o) {
          if (v != "4.1" && v != "2.2") throw UsageError("--msh-version must be 4.1 or 2.2, got " + v);
          o.write.msh_version = v;
        }},
-      {"--ascii", "", "", "write ASCII where the format has both encodings",
-       [&](const std::string&) { o.write.binary = false; }},
-      {"--stats", "", "FILE", "write counts, time per stage, peak memory, quality and distance as JSON",
-       [&](const std::string& v) { o.stats_path = v; }},
-      {"--threads", "-j", "N", "worker threads (default: all)",
-       [&](const std::string& v) { t.threads = parse_int("--threads", v, 1, 1024); }},
-      {"--quiet", "-q", "", "print nothing on success", [&](const std::string&) { o.quiet = true; }},
-      {"--verbose", "-v", "", "also print each stage as it starts and ends, and each improvement pass",
-       [&](const std::string&) { o.verbose = true; }},
+      cli::ascii_option(o.write.binary),
+      cli::stats_option(o.stats_path,
+                        "write counts, time per stage, peak memory, quality and distance as JSON"),
+      cli::threads_option(t.threads),
+      cli::quiet_option(o.quiet),
+      cli::verbose_option(o.verbose,
+                          "also print each stage as it starts and ends, and each improvement pass"),
   };
   return spec;
 }
@@ -150,7 +151,8 @@ int tetrahedralize(const std::vector<std::string>& args, std::ostream& out, std:
                      " inverted, " + std::to_string(quality.degenerate_tets) + " flat tets); nothing written");
     }
     io::write_volume(registry, result.mesh, files[1], options.write);
-    if (!options.surface_path.empty()) io::write_surface(registry, result.tracked_surface, options.surface_path);
+    if (!options.surface_path.empty())
+      io::write_surface(registry, result.tracked_surface, options.surface_path, options.write);
     if (!options.stats_path.empty()) {
       cli::write_stats_file(options.stats_path, make_stats(input, result, quality).dump(2));
     }

@@ -88,6 +88,28 @@ std::string help_text(const ToolSpec& spec) {
   return out.str();
 }
 
+Option quiet_option(bool& quiet) {
+  return {"--quiet", "-q", "", "print nothing on success", [&quiet](const std::string&) { quiet = true; }};
+}
+
+Option verbose_option(bool& verbose, const std::string& help) {
+  return {"--verbose", "-v", "", help, [&verbose](const std::string&) { verbose = true; }};
+}
+
+Option threads_option(int& threads) {
+  return {"--threads", "-j", "N", "worker threads (default: all)",
+          [&threads](const std::string& v) { threads = parse_int("--threads", v, 1, 1024); }};
+}
+
+Option stats_option(std::string& path, const std::string& help) {
+  return {"--stats", "", "FILE", help, [&path](const std::string& v) { path = v; }};
+}
+
+Option ascii_option(bool& binary) {
+  return {"--ascii", "", "", "write the text variant of STL, PLY and MSH (default: binary)",
+          [&binary](const std::string&) { binary = false; }};
+}
+
 double parse_double(const std::string& option, const std::string& value) {
   double result = 0;
   const char* end = value.data() + value.size();

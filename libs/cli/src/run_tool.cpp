@@ -1,6 +1,8 @@
 #include <mr/cli/run_tool.h>
 #include <mr/core/errors.h>
 
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <fstream>
 #include <new>
@@ -10,9 +12,29 @@ namespace mr::cli {
 
 std::string version_string() { return MR_VERSION; }
 
+void run_with_threads(int threads, const std::function<void()>& body) {
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute(body);
+}
+
 std::vector<std::string> arguments(int argc, char** argv) {
   return std::vector<std::string>(argv + std::min(argc, 1), argv + argc);
 }
+
+namespace {
+
+// "IN -> OUT: " for a tool's files, so a failure no message of ours foresaw
+// still says what was being worked on.
+std::string files_prefix(const std::vector<std::string>& files) {
+  std::string prefix;
+  for (const std::string& file : files) {
+    if (!prefix.empty()) prefix += " -> ";
+    prefix += file;
+  }
+  return prefix.empty() ? prefix : prefix + ": ";
+}
+
+}  // namespace
 
 int run_tool(const ToolSpec& spec, const std::vector<std::string>& args, std::ostream& out,
              std::ostream& err, const std::function<void(const std::vector<std::string>&)>& body) {
@@ -24,8 +46,10 @@ int run_tool(const ToolSpec& spec, const std::vector<std::string>& args, std::os
     out << spec.name << " " << version_string() << "\n";
     return exit_ok;
   }
+  std::vector<std::string> files;
   try {
-    body(parse_arguments(spec, args));
+    files = parse_arguments(spec, args);
+    body(files);
     return exit_ok;
   } catch (const UsageError& e) {
     err << spec.name << ": " << e.what() << "\n";
@@ -33,11 +57,17 @@ int run_tool(const ToolSpec& spec, const std::vector<std::string>& args, std::os
   } catch (const InputError& e) {
     err << spec.name << ": error: " << e.what() << "\n";
     return exit_bad_input;
+  } catch (const Error& e) {
+    err << spec.name << ": error: " << e.what() << "\n";
+    return exit_failure;
   } catch (const std::bad_alloc&) {
-    err << spec.name << ": error: out of memory\n";
+    err << spec.name << ": error: " << files_prefix(files) << "out of memory\n";
     return exit_failure;
   } catch (const std::exception& e) {
-    err << spec.name << ": error: " << e.what() << "\n";
+    // Not one of ours: a library's exception that no reader, writer or stage
+    // turned into a message. Its text is kept as the detail, after what failed.
+    err << spec.name << ": error: " << files_prefix(files)
+        << "the run failed on an unexpected library error: " << library_error_text(e) << "\n";
     return exit_failure;
   }
 }

@@ -3,6 +3,7 @@
 #include <mr/core/boundary.h>
 #include <mr/core/errors.h>
 
+#include <new>
 #include <system_error>
 
 namespace mr::io {
@@ -25,6 +26,48 @@ void check_output_path(const std::filesystem::path& path) {
   if (std::filesystem::is_directory(path, ec)) throw UsageError(path.string() + " is a directory");
 }
 
+// An input with nothing to work on is a bad input, not an empty result: a file
+// of random bytes named .obj parses as an OBJ without a single face.
+void check_has_triangles(const TriangleSoup& soup, const std::filesystem::path& path) {
+  if (soup.triangles.empty()) throw InputError(path.string(), "no triangles found");
+}
+
+void check_has_tets(const TetMesh& mesh, const std::filesystem::path& path) {
+  if (mesh.tets.empty()) throw InputError(path.string(), "no tets found");
+}
+
+// Runs a format's reader. Our own errors pass through; anything else a
+// library throws (a parser's exception, out of memory on a hostile size)
+// becomes an InputError naming the file, never a bare library message.
+template <class Read>
+auto read_guarded(const Format& format, const std::filesystem::path& path, const Read& read) {
+  try {
+    return read();
+  } catch (const Error&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw InputError(path.string(),
+                     "cannot be read as " + format.name + ": it needs more memory than is available");
+  } catch (const std::exception& e) {
+    throw InputError(path.string(), "cannot be read as " + format.name + ": " + library_error_text(e));
+  }
+}
+
+// The same for a writer: a library's exception becomes a RunError naming the
+// destination (the writer itself only sees the temporary path).
+void write_guarded(const Format& format, const std::filesystem::path& path,
+                   const std::function<void(const std::filesystem::path&)>& write) {
+  try {
+    write_atomically(path, write);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw RunError("cannot write " + path.string() + " as " + format.name + ": out of memory");
+  } catch (const std::exception& e) {
+    throw RunError("cannot write " + path.string() + " as " + format.name + ": " + library_error_text(e));
+  }
+}
+
 }  // namespace
 
 bool is_volume_format(const Registry& registry, const std::filesystem::path& path,
@@ -37,9 +80,10 @@ TetMesh read_volume(const Registry& registry, const std::filesystem::path& path,
   if (!format.read_volume)
     throw InputError(path.string(), "is a surface format (" + format.name + "), not a volume mesh");
   check_readable(path);
-  TetMesh mesh = format.read_volume(path, options);
+  TetMesh mesh = read_guarded(format, path, [&] { return format.read_volume(path, options); });
   if (std::string problem = find_tet_mesh_inconsistency(mesh); !problem.empty())
     throw InputError(path.string(), problem);
+  check_has_tets(mesh, path);
   return mesh;
 }
 
@@ -48,9 +92,10 @@ TriangleSoup read_surface(const Registry& registry, const std::filesystem::path&
   const Format& format = registry.resolve_for_read(path, options.format);
   if (!format.read_surface) return extract_boundary(read_volume(registry, path, options));
   check_readable(path);
-  TriangleSoup soup = format.read_surface(path, options);
+  TriangleSoup soup = read_guarded(format, path, [&] { return format.read_surface(path, options); });
   if (std::string problem = find_soup_inconsistency(soup); !problem.empty())
     throw InputError(path.string(), problem);
+  check_has_triangles(soup, path);
   return soup;
 }
 
@@ -77,7 +122,7 @@ void write_surface(const Registry& registry, const TriangleSoup& soup, const std
   if (std::string problem = find_soup_inconsistency(soup); !problem.empty())
     throw RunError("refusing to write an inconsistent mesh to " + path.string() + ": " + problem);
   check_output_path(path);
-  write_atomically(path, [&](const std::filesystem::path& temp) {
+  write_guarded(format, path, [&](const std::filesystem::path& temp) {
     format.write_surface(soup, temp, options);
     if (check) check(temp);
   });
@@ -90,7 +135,8 @@ void write_volume(const Registry& registry, const TetMesh& mesh, const std::file
   if (std::string problem = find_tet_mesh_inconsistency(mesh); !problem.empty())
     throw RunError("refusing to write an inconsistent mesh to " + path.string() + ": " + problem);
   check_output_path(path);
-  write_atomically(path, [&](const std::filesystem::path& temp) { format.write_volume(mesh, temp, options); });
+  write_guarded(format, path,
+                [&](const std::filesystem::path& temp) { format.write_volume(mesh, temp, options); });
 }
 
 }  // namespace mr::io

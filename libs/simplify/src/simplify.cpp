@@ -1,5 +1,6 @@
 #include <mr/simplify/simplify.h>
 
+#include <mr/core/orientation.h>
 #include <mr/core/weld.h>
 
 #include "mesh_state.h"
@@ -35,14 +36,22 @@ DerivedTolerances derive_tolerances(const TriangleSoup& input, const SimplifyOpt
   return t;
 }
 
-// Simplifies `surface` inside the envelope of `reference`.
+// Simplifies `surface` inside the envelope of `reference`. Its patches are
+// oriented coherently first: the halfedge mesh takes faces in input order and
+// adds one that disagrees with the faces already in reversed, standing for a
+// reversed copy that no collapse may merge with its neighbours; where regions
+// grown from opposite orientations meet, faces fit neither way and are kept
+// aside, their vertices locked. A scan stitched from inconsistently oriented
+// pieces was locked that way (docs/ARCHITECTURE.md, Simplification).
 SimplifyResult run(const TriangleSoup& surface, const TriangleSoup& reference, const SimplifyOptions& options,
                    const DerivedTolerances& tolerances) {
   SimplifyResult result;
   result.faces_before = surface.triangles.size();
   result.epsilon = tolerances.epsilon;
   auto start = std::chrono::steady_clock::now();
-  MeshState state(reference, weld_identical_vertices(surface), tolerances);
+  TriangleSoup welded = weld_identical_vertices(surface);
+  result.reoriented_faces = orient_coherently(welded).flipped;
+  MeshState state(reference, welded, tolerances);
   result.kept_aside_faces = state.kept_aside_faces();
   result.duplicate_faces = state.duplicate_faces();
   result.locked_vertices = state.locked_vertices();

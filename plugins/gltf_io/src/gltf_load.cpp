@@ -141,9 +141,9 @@ tinygltf::Model load_model(const std::vector<char>& bytes, const std::filesystem
                                       base_dir);
     }
   } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(name, std::string("invalid JSON: ") + e.what());
+    throw InputError(name, "invalid JSON: " + library_error_text(e));
   } catch (const std::exception& e) {
-    throw InputError(name, std::string("invalid glTF: ") + e.what());
+    throw InputError(name, "invalid glTF: " + library_error_text(e));
   }
   if (!ok) {
     // tinygltf reports JSON syntax errors as nlohmann's parse_error text.

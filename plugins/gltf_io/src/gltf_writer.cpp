@@ -8,6 +8,7 @@
 
 #include <mr/core/errors.h>
 #include <mr/io/output_file.h>
+#include <mr/io/text_encoding.h>
 
 #include <algorithm>
 #include <map>
@@ -160,9 +161,10 @@ class DocumentBuilder {
     }
   }
 
+  // JSON strings must be UTF-8: a Latin-1 name from an old OBJ would make the dump throw.
   json material(std::size_t region) const {
     const bool named = region < soup_.region_names.size() && !soup_.region_names[region].empty();
-    return {{"name", named ? soup_.region_names[region] : "region_" + std::to_string(region)},
+    return {{"name", named ? io::as_utf8(soup_.region_names[region]) : "region_" + std::to_string(region)},
             {"pbrMetallicRoughness", {{"metallicFactor", 0.0}}}};
   }
 

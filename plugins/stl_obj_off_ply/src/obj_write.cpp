@@ -1,18 +1,20 @@
 // OBJ writer. Coordinates are written in the shortest form that reads back as
 // the same double (as exact as %.17g, and shorter). A corner's uv and normal
 // share its position's index; face regions become 'usemtl' runs in triangle
-// order, so the triangle order is kept.
+// order, so the triangle order is kept. Names are written as UTF-8
+// (io::as_utf8), one line each.
 
 #include "formats.h"
 
 #include <mr/io/output_file.h>
+#include <mr/io/text_encoding.h>
 
 namespace mr::plugins::stl_obj_off_ply {
 namespace {
 
 std::string region_name(const TriangleSoup& soup, std::int32_t region) {
   if (region >= 0 && static_cast<std::size_t>(region) < soup.region_names.size() && !soup.region_names[region].empty()) {
-    std::string name = soup.region_names[region];
+    std::string name = io::as_utf8(soup.region_names[region]);
     for (char& c : name)
       if (c == '\n' || c == '\r') c = ' ';
     return name;

@@ -1,12 +1,14 @@
 // PLY writer: binary little endian by default, ASCII on request. Positions
 // are double so they read back exactly; normals (nx ny nz) and texture
 // coordinates (s t) float; colours uchar red green blue alpha; a face region
-// is an int 'region' face property with names in "comment region" lines.
+// is an int 'region' face property with names in "comment region" lines
+// (UTF-8, io::as_utf8).
 
 #include "formats.h"
 
 #include <mr/core/errors.h>
 #include <mr/io/output_file.h>
+#include <mr/io/text_encoding.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,7 +22,9 @@ std::uint8_t to_byte(float channel) {
   return static_cast<std::uint8_t>(std::lround(clamped * 255.0f));
 }
 
-std::string one_line(std::string text) {
+// A region name as one UTF-8 line.
+std::string one_line(std::string_view name) {
+  std::string text = io::as_utf8(name);
   std::replace_if(text.begin(), text.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
   return text;
 }

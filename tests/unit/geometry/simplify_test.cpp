@@ -13,8 +13,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <fstream>
 #include <map>
+#include <random>
 #include <set>
 #include <sstream>
 
@@ -570,4 +572,91 @@ TEST_CASE("simplify-in-envelope refuses bad input and usage", "[simplify]") {
   mr::io::write_surface(mr::io::make_default_registry(), mr::test::cube_soup(), dir / "cube.stl");
   CHECK(run_simplify({(dir / "cube.stl").string(), (dir / "out.stl").string(), "-e", "-1"}).exit_code == 2);
   CHECK(dir.files() == std::vector<std::string>{"cube.stl", "garbage.stl"});
+}
+
+namespace {
+
+// A closed vessel: a tube whose radius swells and narrows along its length,
+// capped by fans at both ends. 2 * around * (along + 1) faces, outward.
+TriangleSoup closed_vessel(int around, int along) {
+  TriangleSoup soup;
+  const double pi = std::acos(-1.0);
+  for (int j = 0; j <= along; ++j) {
+    const double z = 6.0 * j / along;
+    const double r = 1.0 + 0.3 * std::sin(1.3 * z) + 0.1 * std::cos(3.1 * z);
+    for (int i = 0; i < around; ++i) {
+      const double a = 2.0 * pi * i / around;
+      soup.positions.emplace_back(r * std::cos(a), r * std::sin(a), z);
+    }
+  }
+  const auto at = [around](int i, int j) { return Index(j * around + i % around); };
+  for (int j = 0; j < along; ++j)
+    for (int i = 0; i < around; ++i) {
+      soup.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      soup.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  const auto bottom = Index(soup.positions.size()), top = Index(bottom + 1);
+  soup.positions.emplace_back(0.0, 0.0, 0.0);
+  soup.positions.emplace_back(0.0, 0.0, 6.0);
+  for (int i = 0; i < around; ++i) {
+    soup.triangles.push_back({bottom, at(i + 1, 0), at(i, 0)});
+    soup.triangles.push_back({top, at(i, along), at(i + 1, along)});
+  }
+  return soup;
+}
+
+// Reverses `patches` connected regions of about `patch_faces` faces each
+// (grown breadth-first through shared edges from evenly spread seeds), then
+// shuffles the face order, as in a scan stitched from separately captured
+// pieces.
+TriangleSoup with_flipped_patches(TriangleSoup soup, int patches, std::size_t patch_faces) {
+  std::map<std::pair<Index, Index>, std::vector<std::size_t>> faces_at_edge;
+  for (std::size_t f = 0; f < soup.triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      faces_at_edge[std::minmax(soup.triangles[f][k], soup.triangles[f][(k + 1) % 3])].push_back(f);
+  std::vector<std::uint8_t> flip(soup.triangles.size(), 0);
+  for (int p = 0; p < patches; ++p) {
+    std::vector<std::size_t> queue{(2 * p + 1) * soup.triangles.size() / (2 * patches)};
+    std::set<std::size_t> patch;
+    for (std::size_t q = 0; q < queue.size() && patch.size() < patch_faces; ++q) {
+      const std::size_t f = queue[q];
+      if (!patch.insert(f).second) continue;
+      for (int k = 0; k < 3; ++k)
+        for (std::size_t g : faces_at_edge[std::minmax(soup.triangles[f][k], soup.triangles[f][(k + 1) % 3])])
+          queue.push_back(g);
+    }
+    for (std::size_t f : patch) flip[f] = 1;
+  }
+  for (std::size_t f = 0; f < soup.triangles.size(); ++f)
+    if (flip[f]) std::swap(soup.triangles[f][1], soup.triangles[f][2]);
+  std::mt19937 random(27);
+  for (std::size_t f = soup.triangles.size() - 1; f > 0; --f)
+    std::swap(soup.triangles[f], soup.triangles[random() % (f + 1)]);
+  return soup;
+}
+
+}  // namespace
+
+TEST_CASE("a closed vessel with flipped patches simplifies like its consistently oriented twin",
+          "[simplify]") {
+  const TriangleSoup twin = closed_vessel(96, 34);
+  const TriangleSoup flipped = with_flipped_patches(twin, 8, 300);
+  REQUIRE(twin.triangles.size() == 6720);
+  REQUIRE(mr::check::check_surface(flipped).inconsistent_edges > 0);
+  const auto reference = simplify_in_envelope(twin, {});
+  const auto result = simplify_in_envelope(flipped, {});
+  INFO("twin: " << reference.faces_before << " -> " << reference.faces_after << " faces, "
+                << reference.collapses << " collapses; flipped: " << result.faces_before << " -> "
+                << result.faces_after << " faces, " << result.collapses << " collapses, " << result.flips
+                << " flips, " << result.locked_vertices << " locked, " << result.kept_aside_faces
+                << " kept aside");
+  CHECK(reference.faces_after < twin.triangles.size() / 3);
+  CHECK(result.kept_aside_faces == 0);
+  CHECK(result.locked_vertices == 0);
+  CHECK(double(result.faces_after) <= 1.1 * double(reference.faces_after));
+  const auto report = mr::check::check_surface(result.soup);
+  CHECK(report.watertight());
+  CHECK(report.inconsistent_edges == 0);
+  CHECK(report.volume > 0.9 * mr::test::enclosed_volume(twin));
+  CHECK(mr::check::one_sided_distance(result.soup, flipped).max <= result.epsilon);
 }

@@ -105,3 +105,33 @@ TEST_CASE("the validator runner fails on a broken file", "[gltf][validator]") {
   INFO(report);
   CHECK(status != 0);
 }
+
+TEST_CASE("an OBJ with Latin-1 names converts to a GLB the validator accepts", "[gltf][validator][utf8]") {
+  if (!std::filesystem::exists(tools_dir / "node_modules" / "gltf-validator"))
+    FAIL("the glTF validator is missing: run  npm ci --prefix " + tools_dir.string());
+  test::TempDir dir("gltf_latin1_names");
+  // A tetrahedron in two materials: "Métal" in Latin-1 (0xE9), and 0xE9
+  // followed by 'k' (0x6B), a UTF-8 lead byte without its continuation.
+  test::write_text(dir / "latin1.obj",
+                   "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\ng caf\xE9\nusemtl M\xE9tal\nf 1 3 2\nf 1 2 4\n"
+                   "usemtl \xE9"
+                   "k\nf 1 4 3\nf 2 3 4\n");
+  const std::vector<std::string> utf8_names{"M\xC3\xA9tal",
+                                            "\xC3\xA9"
+                                            "k"};
+  const auto run = test::run_format_convert({(dir / "latin1.obj").string(), (dir / "latin1.glb").string()});
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+
+  std::string report;
+  const int status = run_validator({dir / "latin1.glb"}, dir, report);
+  INFO(report);
+  CHECK(status == 0);
+  CHECK(report.find("\"numErrors\": 0") != std::string::npos);
+
+  io::Registry registry;
+  plugins::register_gltf_formats(registry);
+  const TriangleSoup back = io::read_surface(registry, dir / "latin1.glb");
+  CHECK(back.region_names == utf8_names);
+  CHECK(back.face_regions == std::vector<std::int32_t>{0, 0, 1, 1});
+}

@@ -34,6 +34,14 @@ std::vector<std::string> parse_arguments(const ToolSpec& spec, std::span<const s
 
 std::string help_text(const ToolSpec& spec);
 
+/// The options every tool of the family spells the same way: what one tool
+/// accepts, the others accept too wherever it means anything.
+Option quiet_option(bool& quiet);                                 ///< -q, --quiet
+Option verbose_option(bool& verbose, const std::string& help);    ///< -v, --verbose
+Option threads_option(int& threads);                              ///< -j, --threads N (0: all)
+Option stats_option(std::string& path, const std::string& help);  ///< --stats FILE
+Option ascii_option(bool& binary);                                ///< --ascii: binary = false
+
 /// Value parsers for Option::apply; throw UsageError naming the option.
 double parse_double(const std::string& option, const std::string& value);
 int parse_int(const std::string& option, const std::string& value, int min, int max);

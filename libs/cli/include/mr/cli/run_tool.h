@@ -18,6 +18,10 @@ enum ExitCode : int { exit_ok = 0, exit_failure = 1, exit_bad_input = 2 };
 int run_tool(const ToolSpec& spec, const std::vector<std::string>& args, std::ostream& out,
              std::ostream& err, const std::function<void(const std::vector<std::string>&)>& body);
 
+/// Runs `body` on at most `threads` worker threads (0: all), for tools whose
+/// library calls have no thread option of their own.
+void run_with_threads(int threads, const std::function<void()>& body);
+
 /// argv to a vector, without argv[0].
 std::vector<std::string> arguments(int argc, char** argv);
 

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace mr {
 
@@ -39,5 +40,16 @@ class RunError : public Error {
  public:
   using Error::Error;
 };
+
+/// The message of an exception thrown by a library, without the tag some
+/// libraries put first ("[json.exception.type_error.316] "): for messages of
+/// ours that say which file and what failed, followed by the library's detail.
+inline std::string library_error_text(const std::exception& e) {
+  std::string_view text = e.what();
+  if (text.starts_with('[')) {
+    if (const auto close = text.find("] "); close != std::string_view::npos) text.remove_prefix(close + 2);
+  }
+  return text.empty() ? std::string("no detail given") : std::string(text);
+}
 
 }  // namespace mr

@@ -1,19 +1,24 @@
 #pragma once
 // Reading and writing meshes through a registry. These functions add what
 // every format needs: the file must exist and not be empty, the result is
-// checked for consistency (indices in range, finite coordinates), and output
-// is written to a temporary file renamed into place, so that a failed or
-// interrupted write never leaves a half-written file.
+// checked for consistency (indices in range, finite coordinates) and must
+// hold geometry (a triangle, or a tet for a volume), a library's exception
+// becomes one of ours naming the file, and output is written to a temporary
+// file renamed into place, so that a failed or interrupted write never leaves
+// a half-written file.
 
 #include <mr/io/registry.h>
 
 namespace mr::io {
 
 /// Reads a surface. A volume file is accepted too: its boundary is returned.
+/// Throws InputError naming the file if it holds no triangle ("no triangles
+/// found"; degenerate ones count) or, read as a volume, no tet.
 TriangleSoup read_surface(const Registry& registry, const std::filesystem::path& path,
                           const ReadOptions& options = {});
 
-/// Reads a volume mesh; throws InputError if `path` is a surface format.
+/// Reads a volume mesh; throws InputError if `path` is a surface format or
+/// the file holds no tet ("no tets found").
 TetMesh read_volume(const Registry& registry, const std::filesystem::path& path,
                     const ReadOptions& options = {});
 

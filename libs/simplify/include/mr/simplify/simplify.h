@@ -9,6 +9,15 @@
 // epsilon do not erode) and creates no new self-intersection (exact test). Non-manifold parts are kept aside untouched;
 // copies of one triangle (double-sided faces) are simplified as one face and
 // written out as often, in the same orientations, as the input had them.
+//
+// Orientation: each patch (faces connected through manifold edges) is first
+// oriented coherently, keeping the orientation of the larger part of its area
+// (mr::orient_coherently; the first step of tetrahedralize too). A face that
+// disagreed with its patch is therefore written reversed: no input face's
+// orientation is promised, only that each patch comes out consistently
+// oriented, the way most of its area was. Patches are never flipped as a
+// whole, so an inward shell (a cavity) stays inward, and copies of a face
+// (no manifold edge between them) keep their orientations.
 
 #include <mr/core/triangle_soup.h>
 
@@ -42,6 +51,7 @@ struct SimplifyResult {
   std::size_t faces_after = 0;
   std::size_t kept_aside_faces = 0;  ///< non-manifold or repeated-index faces passed through
   std::size_t duplicate_faces = 0;   ///< copies of an earlier face (same vertices), simplified along with it
+  std::size_t reoriented_faces = 0;  ///< faces reversed to orient their patch coherently
   std::size_t locked_vertices = 0;   ///< vertices never moved (non-manifold neighbourhood)
   std::size_t collapses = 0;
   std::size_t flips = 0;
