@@ -92,7 +92,8 @@ class GridRounding {
     if (!left.empty())
       throw RunError("cannot place " + std::to_string(left.size()) + " vertices on the " + grid_.name() +
                      " grid of the output without a self-intersection, a degenerate face or two vertices on "
-                     "one point (searched " + std::to_string(options_.max_steps) + " grid steps around each)");
+                     "one point (searched " + std::to_string(options_.max_steps * options_.max_stride) +
+                     " grid steps around each)");
     return stats;
   }
 
@@ -115,9 +116,10 @@ class GridRounding {
       Box& b = vertex_reach_[v];
       b.add(original_[v]);
       const Vec3d n = grid_.nearest(original_[v]);
+      const int reach = options_.max_steps * options_.max_stride;
       for (int axis = 0; axis < 3; ++axis) {
-        b.lo[axis] = std::min(b.lo[axis], grid_.step(axis, n[axis], -options_.max_steps));
-        b.hi[axis] = std::max(b.hi[axis], grid_.step(axis, n[axis], options_.max_steps));
+        b.lo[axis] = std::min(b.lo[axis], grid_.step(axis, n[axis], -reach));
+        b.hi[axis] = std::max(b.hi[axis], grid_.step(axis, n[axis], reach));
       }
       all.add(b);
     }
@@ -138,12 +140,15 @@ class GridRounding {
     return {incidence_.faces.data() + incidence_.first[v], incidence_.first[v + 1] - incidence_.first[v]};
   }
 
+  // The nearest grid point; when searching, the points around it, in
+  // widening lattices (every step, then every 4th, 16th, ...) so that a
+  // vertex that must move past a near sheet or a sliver finds a place.
   void place(Index v, bool search, GridRoundingStats& stats) {
     const std::vector<Index> nearby = faces_near(v);
     const Vec3d nearest = grid_.nearest(original_[v]);
     bool placed = try_position(v, nearest, nearby);
-    if (!placed && search) {
-      for (const Vec3d& c : ring_candidates(v, nearest))
+    for (int stride = 1; !placed && search && stride <= options_.max_stride; stride *= 4) {
+      for (const Vec3d& c : ring_candidates(v, nearest, stride))
         if ((placed = try_position(v, c, nearby))) break;
       if (placed) ++stats.nearest_refused;
     }
@@ -163,14 +168,16 @@ class GridRounding {
     return out;
   }
 
-  // Grid points up to max_steps steps from `nearest` along each axis,
-  // nearest to the original position first (ties: by offset, so the order is fixed).
-  std::vector<Vec3d> ring_candidates(Index v, const Vec3d& nearest) const {
+  // Grid points up to max_steps strides of `stride` steps from `nearest`
+  // along each axis, nearest to the original position first (ties: by
+  // offset, so the order is fixed).
+  std::vector<Vec3d> ring_candidates(Index v, const Vec3d& nearest, int stride) const {
     const int r = options_.max_steps;
     std::vector<std::array<double, 3>> axis_values(static_cast<std::size_t>(2 * r + 1));
     for (int i = -r; i <= r; ++i)
       for (int axis = 0; axis < 3; ++axis)
-        axis_values[static_cast<std::size_t>(i + r)][static_cast<std::size_t>(axis)] = grid_.step(axis, nearest[axis], i);
+        axis_values[static_cast<std::size_t>(i + r)][static_cast<std::size_t>(axis)] =
+            grid_.step(axis, nearest[axis], i * stride);
     std::vector<std::tuple<double, int, int, int>> order;
     for (int i = -r; i <= r; ++i)
       for (int j = -r; j <= r; ++j)
@@ -254,8 +261,8 @@ class GridRounding {
 }  // namespace
 
 GridRoundingStats round_to_grid(TriangleSoup& surface, const CoordinateGrid& grid, const GridRoundingOptions& options) {
-  if (options.max_steps < 0 || options.max_passes < 1)
-    throw UsageError("round_to_grid: max_steps must be >= 0 and max_passes >= 1");
+  if (options.max_steps < 0 || options.max_stride < 1 || options.max_passes < 1)
+    throw UsageError("round_to_grid: max_steps must be >= 0, max_stride and max_passes >= 1");
   if (grid.is_identity()) {
     GridRoundingStats stats;
     stats.vertices = surface.positions.size();

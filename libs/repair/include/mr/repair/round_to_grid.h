@@ -7,7 +7,7 @@
 // (which a reader welds into a non-manifold vertex). Here each vertex moves
 // to the nearest grid point where none of that happens, decided exactly on
 // the rounded coordinates; where the nearest is refused, the grid points
-// around it are tried, nearest first.
+// around it are tried, nearest first, on widening lattices.
 
 #include <mr/core/coordinate_grid.h>
 #include <mr/core/triangle_soup.h>
@@ -18,8 +18,10 @@ namespace mr::repair {
 
 struct GridRoundingOptions {
   /// How far the search goes when the nearest grid point is refused: grid
-  /// points up to this many steps from it along each axis.
+  /// points up to this many strides from it along each axis, with strides
+  /// of 1, 4, 16, ... steps up to max_stride.
   int max_steps = 4;
+  int max_stride = 64;
   /// Sweeps over the vertices not yet placed (a refused vertex may fit once
   /// its neighbours have moved).
   int max_passes = 8;
@@ -39,7 +41,7 @@ struct GridRoundingStats {
 /// this still holds afterwards, exactly, on the grid coordinates: a vertex
 /// goes to the nearest grid point where none of its faces becomes degenerate
 /// or meets another face improperly and no other vertex sits, else to the
-/// nearest such grid point within options.max_steps steps. Vertices are
+/// nearest such grid point of the search (GridRoundingOptions). Vertices are
 /// placed in index order, so the result is deterministic. Throws mr::RunError
 /// naming the count of vertices that found no place.
 GridRoundingStats round_to_grid(TriangleSoup& surface, const CoordinateGrid& grid,
