@@ -30,13 +30,13 @@ def _save(fig, out_dir, name):
     return name
 
 
-def time_vs_size(rows, order, out_dir, time_limit):
-    fig, ax = plt.subplots(figsize=(8, 5))
+def _scatter_by_size(ax, rows, order, field, floor):
+    """Each tool's runs as (input faces, field) points, o = valid, x = failed; False if none."""
     plotted = False
     for tool in order:
-        mine = [r for r in rows if r["tool"] == tool and r.get("input_faces") and r.get("cpu_s") is not None]
+        mine = [r for r in rows if r["tool"] == tool and r.get("input_faces") and r.get(field) is not None]
         for ok, marker in ((True, "o"), (False, "x")):
-            pts = [(r["input_faces"], max(r["cpu_s"], TIME_FLOOR_S)) for r in mine if (r["status"] == "ok") == ok]
+            pts = [(r["input_faces"], max(r[field], floor)) for r in mine if (r["status"] == "ok") == ok]
             if pts:
                 x, y = zip(*pts)
                 label = f"{tool} ({'ok' if ok else 'failed'}, {len(pts)})"
@@ -44,20 +44,35 @@ def time_vs_size(rows, order, out_dir, time_limit):
                 ax.scatter(x, y, marker=marker, s=36 if ok else 30, color=color(tool, order), alpha=0.8,
                            label=label, **style)
                 plotted = True
-    if not plotted:
-        plt.close(fig)
-        return None
     ax.set_xscale("log")
     ax.set_yscale("log")
+    ax.set_xlabel("input faces")
+    ax.grid(True, which="major", alpha=0.3)
+    ax.legend(fontsize=8, loc="lower right")
+    return plotted
+
+
+def time_vs_size(rows, order, out_dir, time_limit):
+    fig, ax = plt.subplots(figsize=(8, 5))
+    if not _scatter_by_size(ax, rows, order, "cpu_s", TIME_FLOOR_S):
+        plt.close(fig)
+        return None
     ax.axhline(time_limit, color="grey", linestyle="--", linewidth=1)
     ax.text(ax.get_xlim()[1], time_limit, f"time limit {time_limit:g} s (wall) ", va="bottom", ha="right",
             color="grey", fontsize=8)
-    ax.set_xlabel("input faces")
     ax.set_ylabel("CPU time, user + sys [s]")
     ax.set_title("Time against input size (o = valid output, x = failed)")
-    ax.grid(True, which="major", alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")
     return _save(fig, out_dir, "time_vs_size.png")
+
+
+def memory_vs_size(rows, order, out_dir):
+    fig, ax = plt.subplots(figsize=(8, 5))
+    if not _scatter_by_size(ax, rows, order, "peak_mb", 1.0):
+        plt.close(fig)
+        return None
+    ax.set_ylabel("peak resident memory [MB]")
+    ax.set_title("Memory against input size (o = valid output, x = failed)")
+    return _save(fig, out_dir, "memory_vs_size.png")
 
 
 def _histograms(rows, order, out_dir, name, panels, title):
@@ -148,7 +163,8 @@ def success_by_tag(rows, order, out_dir):
 
 
 def make_all(rows, order, out_dir, time_limit, volume):
-    names = [time_vs_size(rows, order, out_dir, time_limit), success_by_tag(rows, order, out_dir)]
+    names = [time_vs_size(rows, order, out_dir, time_limit), memory_vs_size(rows, order, out_dir),
+             success_by_tag(rows, order, out_dir)]
     if volume:
         names += [dihedral(rows, order, out_dir), amips(rows, order, out_dir)]
     names.append(distance(rows, order, out_dir))
