@@ -14,6 +14,8 @@
 
 #include <OpenMesh/Core/Geometry/QuadricT.hh>
 
+#include <tbb/concurrent_unordered_map.h>
+
 #include <array>
 #include <memory>
 #include <vector>
@@ -109,6 +111,15 @@ class MeshState {
   bool boundary_curve_kept(TriMesh::HalfedgeHandle h) const;
   bool shapes_acceptable(const std::vector<NewFace>& faces) const;
   bool inside_envelope(const std::vector<NewFace>& faces) const;
+  // Envelope verdicts per triangle (corners sorted, see mesh_state_checks.cpp).
+  using SortedCorners = std::array<double, 9>;
+  struct SortedCornersHash {
+    std::size_t operator()(const SortedCorners& key) const;
+  };
+  static SortedCorners sorted_corners(const Corners& c);
+  static Corners corners_of(const SortedCorners& key);
+  bool quick_envelope_refusal(const Corners& c) const;
+  bool full_envelope_test(const Corners& c) const;
 
   // Carried points: the envelope bounds only the distance from the output to
   // the input, so on its own it lets a part thinner than epsilon shrink away
@@ -143,6 +154,11 @@ class MeshState {
   std::unique_ptr<envelope::Envelope> envelope_;
   std::unique_ptr<envelope::Envelope> fine_envelope_;  // stage 2: asked only where envelope_ refuses
   std::unique_ptr<envelope::Envelope> boundary_envelope_;  // null when the input has no boundary
+  // Vertices never move, so a triangle's envelope verdict never changes; a
+  // candidate is checked again every time its neighbourhood changes, mostly
+  // with the same new faces. The verdict is a function of the sorted corners
+  // alone, so which thread stores it first does not matter (determinism).
+  mutable tbb::concurrent_unordered_map<SortedCorners, bool, SortedCornersHash> envelope_verdicts_;
   spatial::BoxGrid grid_;
   std::vector<Quadric> quadrics_;
   std::vector<Vec3d> carried_positions_;                 // removed vertices

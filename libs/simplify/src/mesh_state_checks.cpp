@@ -154,20 +154,63 @@ bool MeshState::shapes_acceptable(const std::vector<NewFace>& faces) const {
   return true;
 }
 
+std::size_t MeshState::SortedCornersHash::operator()(const SortedCorners& key) const {
+  std::size_t h = 0;
+  for (double x : key) h = (h ^ std::hash<double>{}(x)) * 0x100000001b3ull;
+  return h;
+}
+
+// The corners in lexicographic order, so that a triangle met in any rotation
+// or orientation is tested (and stored) the same way.
+MeshState::SortedCorners MeshState::sorted_corners(const Corners& c) {
+  std::array<Vec3d, 3> sorted = c;
+  const auto less = [](const Vec3d& a, const Vec3d& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  };
+  std::sort(sorted.begin(), sorted.end(), less);
+  SortedCorners key{};
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) key[3 * k + i] = sorted[k][i];
+  return key;
+}
+
+Corners MeshState::corners_of(const SortedCorners& key) {
+  return {Vec3d(key[0], key[1], key[2]), Vec3d(key[3], key[4], key[5]), Vec3d(key[6], key[7], key[8])};
+}
+
+// Most refusals are decided by a few points: the centroid and the edge
+// midpoints. A triangle the full test accepts has all its points within the
+// limit, so a refusal here is the full test's verdict too.
+bool MeshState::quick_envelope_refusal(const Corners& c) const {
+  for (const Vec3d& p : {Vec3d((c[0] + c[1] + c[2]) / 3.0), Vec3d(0.5 * (c[0] + c[1])), Vec3d(0.5 * (c[1] + c[2])),
+                         Vec3d(0.5 * (c[2] + c[0]))})
+    if (!envelope_->is_inside(p)) return true;
+  return false;
+}
+
+// The sampled test is conservative (it may refuse faces inside); a refusal
+// is asked again with the finer stage-2 sampling, closer to epsilon.
+bool MeshState::full_envelope_test(const Corners& c) const {
+  return envelope_->is_inside(c[0], c[1], c[2]) || fine_envelope_->is_inside(c[0], c[1], c[2]);
+}
+
 bool MeshState::inside_envelope(const std::vector<NewFace>& faces) const {
-  // Most refusals are decided by a few points: the centroid and the edge
-  // midpoints of each face, asked first. The sampled test is conservative (it
-  // may refuse faces inside); a refusal is asked again with the finer stage-2
-  // sampling, closer to epsilon.
+  std::vector<SortedCorners> unknown;
   for (const NewFace& face : faces) {
-    const Corners& c = face.corners;
-    for (const Vec3d& p : {Vec3d((c[0] + c[1] + c[2]) / 3.0), Vec3d(0.5 * (c[0] + c[1])),
-                           Vec3d(0.5 * (c[1] + c[2])), Vec3d(0.5 * (c[2] + c[0]))})
-      if (!envelope_->is_inside(p)) return false;
+    const SortedCorners key = sorted_corners(face.corners);
+    if (const auto known = envelope_verdicts_.find(key); known != envelope_verdicts_.end()) {
+      if (!known->second) return false;
+    } else if (quick_envelope_refusal(corners_of(key))) {
+      envelope_verdicts_.emplace(key, false);
+      return false;
+    } else {
+      unknown.push_back(key);
+    }
   }
-  for (const NewFace& face : faces) {
-    const Corners& c = face.corners;
-    if (!envelope_->is_inside(c[0], c[1], c[2]) && !fine_envelope_->is_inside(c[0], c[1], c[2])) return false;
+  for (const SortedCorners& key : unknown) {
+    const bool inside = full_envelope_test(corners_of(key));
+    envelope_verdicts_.emplace(key, inside);
+    if (!inside) return false;
   }
   return true;
 }
