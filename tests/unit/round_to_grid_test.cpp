@@ -138,10 +138,11 @@ TEST_CASE("writers store positions exactly on the grid they announce", "[grid][i
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  for (const char* name : {"out.stl", "out.glb", "out.gltf", "out.drc", "out.obj", "out.ply", "out.off"}) {
+  for (const char* name : {"out.stl", "out.glb", "out.gltf", "out.drc", "draco.glb", "out.obj", "out.ply", "out.off"}) {
     SECTION(name) {
       io::WriteOptions options;
       options.draco.position_bits = 14;
+      options.draco.compress_gltf = std::string(name) == "draco.glb";
       const CoordinateGrid grid = io::surface_position_grid(registry, dir / name, options, lo, hi);
       if (grid.kind() == CoordinateGrid::Kind::quantized) options.draco.position_grid = grid.quantization();
       const TriangleSoup on_grid = rounded_naively(soup, grid);
