@@ -158,3 +158,26 @@ TEST_CASE("double-sided: an open double-sided sheet is left alone", "[orientatio
   CHECK(make_double_sided_components_one_sided(soup) == 0);
   CHECK(soup.triangles == before.triangles);
 }
+
+// Faces stored twice the same way round (soups, careless exporters): the
+// copies go, whatever the corner order and even on unwelded corners; copies
+// the other way round stay.
+TEST_CASE("repeated faces: same-way copies are dropped, opposite copies kept", "[orientation]") {
+  TriangleSoup soup = test::cube_soup();
+  soup.face_regions.assign(soup.triangles.size(), 0);
+  const Triangle first = soup.triangles[0], second = soup.triangles[1];
+  soup.triangles.push_back({first[1], first[2], first[0]});  // the same face, rotated
+  soup.face_regions.push_back(7);
+  // The same face again on its own (unwelded) corners.
+  const auto corner = static_cast<Index>(soup.positions.size());
+  for (Index v : second) soup.positions.push_back(soup.positions[v]);
+  soup.triangles.push_back({corner, corner + 1, corner + 2});
+  soup.face_regions.push_back(8);
+  soup.triangles.push_back({second[0], second[2], second[1]});  // reversed: kept
+  soup.face_regions.push_back(9);
+  CHECK(drop_repeated_faces(soup) == 2);
+  REQUIRE(soup.triangles.size() == 13);
+  CHECK(soup.triangles.back() == Triangle{second[0], second[2], second[1]});
+  CHECK(soup.face_regions.back() == 9);
+  CHECK(soup.face_regions.size() == 13);
+}

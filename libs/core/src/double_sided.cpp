@@ -139,3 +139,24 @@ std::size_t make_double_sided_components_one_sided(TriangleSoup& soup) {
 }
 
 }  // namespace mr
+
+namespace mr {
+
+std::size_t drop_repeated_faces(TriangleSoup& soup) {
+  const TriangleSoup welded = weld_identical_vertices(soup);
+  std::map<std::pair<Key, bool>, char> seen;
+  std::size_t kept = 0;
+  for (std::size_t f = 0; f < welded.triangles.size(); ++f) {
+    const Triangle& t = welded.triangles[f];
+    if (!seen.try_emplace({sorted(t), along_sorted(t)}, 1).second) continue;
+    soup.triangles[kept] = soup.triangles[f];
+    if (soup.has_face_regions()) soup.face_regions[kept] = soup.face_regions[f];
+    ++kept;
+  }
+  const std::size_t dropped = soup.triangles.size() - kept;
+  soup.triangles.resize(kept);
+  if (soup.has_face_regions()) soup.face_regions.resize(kept);
+  return dropped;
+}
+
+}  // namespace mr

@@ -329,10 +329,13 @@ TetClassification classify_for_filter(Mesh& mesh, const TriangleSoup& surface, s
 // Faces flipped against their neighbours would make the winding number dip
 // inside the solid; orienting patches coherently first keeps the filter sound.
 // A surface written double-sided (each face in both orientations) has
-// winding number 0 everywhere: it is made one-sided and outward first.
+// winding number 0 everywhere: it is made one-sided and outward first. A
+// face stored twice the same way round would count twice and split the
+// patches at its edges, so flipped faces beside it would stay flipped.
 TriangleSoup oriented_input(const TriangleSoup& input, PipelineStats& stats, const Logger& logger) {
   StageTimer timer(stats, "orient", logger);
   TriangleSoup oriented = input;
+  count(timer, "repeated_faces_dropped", drop_repeated_faces(oriented));
   count(timer, "double_sided_copies_dropped", make_double_sided_components_one_sided(oriented));
   const OrientationStats orientation = orient_coherently(oriented);
   count(timer, "patches", orientation.patches);

@@ -21,4 +21,13 @@ namespace mr {
 /// number of faces dropped. Deterministic.
 std::size_t make_double_sided_components_one_sided(TriangleSoup& soup);
 
+/// Drops every face that repeats an earlier one with the same three
+/// vertices (bit-identical positions) in the same orientation, keeping the
+/// first: a face stored twice would count twice in the winding number and
+/// make non-manifold edges that split the patches orientation works on.
+/// Copies in the opposite orientation are kept (a wall between two touching
+/// parts, or a double-sided sheet). Per-face regions follow their faces.
+/// Returns the number dropped.
+std::size_t drop_repeated_faces(TriangleSoup& soup);
+
 }  // namespace mr
