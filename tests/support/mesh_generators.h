@@ -4,6 +4,11 @@
 
 #include <mr/core/triangle_soup.h>
 
+#include <algorithm>
+#include <map>
+#include <utility>
+#include <vector>
+
 namespace mr::test {
 
 /// A closed torus-like grid: nu x nv vertices at position(i, j) (i around the
@@ -22,6 +27,31 @@ TriangleSoup torus_grid(int nu, int nv, const Position& position) {
       soup.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
       soup.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
     }
+  return soup;
+}
+
+/// A sphere of radius `radius` about the origin: an octahedron subdivided
+/// `subdivisions` times (8 * 4^n faces), new points pushed onto the sphere.
+inline TriangleSoup sphere(double radius, int subdivisions) {
+  TriangleSoup soup;
+  soup.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  soup.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int s = 0; s < subdivisions; ++s) {
+    std::map<std::pair<Index, Index>, Index> middle;
+    auto mid = [&](Index a, Index b) {
+      const auto key = std::minmax(a, b);
+      const auto [it, added] = middle.emplace(key, Index(soup.positions.size()));
+      if (added) soup.positions.push_back((soup.positions[a] + soup.positions[b]).normalized());
+      return it->second;
+    };
+    std::vector<Triangle> finer;
+    for (const Triangle& t : soup.triangles) {
+      const Index ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+      finer.insert(finer.end(), {{t[0], ab, ca}, {ab, t[1], bc}, {ca, bc, t[2]}, {ab, bc, ca}});
+    }
+    soup.triangles = std::move(finer);
+  }
+  for (Vec3d& p : soup.positions) p *= radius;
   return soup;
 }
 

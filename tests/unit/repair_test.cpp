@@ -338,33 +338,7 @@ TEST_CASE("the repair refuses bad options and empty tet sets", "[repair]") {
   REQUIRE_THROWS_AS(repair::repair_surface_from_tets(broken, {}, input, options), UsageError);
 }
 
-namespace {
-
-// Points of a sphere of radius r: an octahedron subdivided n times.
-TriangleSoup sphere(double radius, int subdivisions) {
-  TriangleSoup soup;
-  soup.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  soup.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  for (int s = 0; s < subdivisions; ++s) {
-    std::map<std::pair<Index, Index>, Index> middle;
-    auto mid = [&](Index a, Index b) {
-      const auto key = std::minmax(a, b);
-      const auto [it, added] = middle.emplace(key, Index(soup.positions.size()));
-      if (added) soup.positions.push_back((soup.positions[a] + soup.positions[b]).normalized());
-      return it->second;
-    };
-    std::vector<Triangle> finer;
-    for (const Triangle& t : soup.triangles) {
-      const Index ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
-      finer.insert(finer.end(), {{t[0], ab, ca}, {ab, t[1], bc}, {ca, bc, t[2]}, {ab, bc, ca}});
-    }
-    soup.triangles = std::move(finer);
-  }
-  for (Vec3d& p : soup.positions) p *= radius;
-  return soup;
-}
-
-}  // namespace
+using test::sphere;
 
 TEST_CASE("simplify_in_envelope_of keeps the surface in the reference's envelope", "[repair][simplify]") {
   const TriangleSoup surface = sphere(1.0, 5);

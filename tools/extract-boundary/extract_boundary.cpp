@@ -1,12 +1,10 @@
 #include "extract_boundary.h"
+#include "surface_output.h"
 
-#include <mr/check/surface_check.h>
-#include <mr/check/written_file.h>
 #include <mr/cli/run_tool.h>
 #include <mr/core/errors.h>
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
-#include <mr/repair/round_to_grid.h>
 #include <mr/repair/tet_boundary.h>
 
 #include <nlohmann/json.hpp>
@@ -69,27 +67,6 @@ cli::ToolSpec make_spec(ToolOptions& o) {
   return spec;
 }
 
-// A boundary that is watertight in doubles stays so in the written file:
-// its vertices go onto the grid the format stores (repair::round_to_grid),
-// and the file is read back and checked before it is renamed into place.
-// Other boundaries (open, pinched, interfaces) are written as they are.
-void write_boundary(const io::Registry& registry, TriangleSoup boundary, const std::string& path, bool interfaces,
-                    io::WriteOptions options) {
-  if (interfaces || boundary.triangles.empty() || !check::check_surface(boundary).watertight()) {
-    io::write_surface(registry, boundary, path, options);
-    return;
-  }
-  Vec3d lo = boundary.positions.front(), hi = lo;
-  for (const Vec3d& p : boundary.positions) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const CoordinateGrid grid = io::surface_position_grid(registry, path, options, lo, hi);
-  if (grid.kind() == CoordinateGrid::Kind::quantized) options.draco.position_grid = grid.quantization();
-  repair::round_to_grid(boundary, grid);
-  io::write_surface(registry, boundary, path, options, check::watertight_file_check(registry, path));
-}
-
 BoundaryRun run(const ToolOptions& o, const std::vector<std::string>& files) {
   const io::Registry registry = io::make_default_registry();
   BoundaryRun r;
@@ -100,7 +77,10 @@ BoundaryRun run(const ToolOptions& o, const std::vector<std::string>& files) {
   const TriangleSoup boundary = repair::tet_mesh_boundary(mesh, o.request);
   r.seconds_boundary = seconds_since(start);
   start = std::chrono::steady_clock::now();
-  write_boundary(registry, boundary, files[1], o.interfaces, o.write);
+  if (o.interfaces)  // interfaces are not one closed surface
+    io::write_surface(registry, boundary, files[1], o.write);
+  else
+    write_surface_keeping_watertight(registry, boundary, files[1], o.write);
   r.seconds_write = seconds_since(start);
   r.tets = mesh.tets.size();
   r.faces = boundary.triangles.size();

@@ -1,0 +1,132 @@
+// The only translation unit with CGAL's hole filling, refinement and
+// fairing templates (compile time).
+#include "patch.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/fair.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/refine.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <algorithm>
+#include <array>
+#include <iterator>
+
+namespace mr::hole_fill::detail {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+Point to_point(const Vec3d& p) { return Point(p.x(), p.y(), p.z()); }
+Vec3d to_vec(const Point& p) { return Vec3d(p.x(), p.y(), p.z()); }
+
+// What triangulate_hole_polyline writes: a face over loop indices.
+struct LoopFace {
+  LoopFace(int a, int b, int c) : corners{Index(a), Index(b), Index(c)} {}
+  Triangle corners;
+};
+
+std::vector<Triangle> triangulate_loop(const HoleNeighbourhood& hole, Triangulator triangulator) {
+  std::vector<Point> points, third;
+  for (std::size_t i = 0; i < hole.loop_size; ++i) {
+    points.push_back(to_point(hole.positions[i]));
+    third.push_back(to_point(hole.opposite[i]));
+  }
+  std::vector<LoopFace> faces;
+  PMP::triangulate_hole_polyline(
+      points, third, std::back_inserter(faces),
+      CGAL::parameters::use_delaunay_triangulation(triangulator != Triangulator::full_search)
+          .use_2d_constrained_delaunay_triangulation(triangulator == Triangulator::plane_2d));
+  std::vector<Triangle> out;
+  for (const LoopFace& f : faces) out.push_back(f.corners);
+  return out;
+}
+
+// Orients the triangulation so that loop edge 0 -> 1 runs forward in the
+// face that holds it (the faces of a disk are oriented alike).
+void orient_along_loop(std::vector<Triangle>& faces) {
+  for (const Triangle& f : faces)
+    for (int i = 0; i < 3; ++i) {
+      if (f[i] == 0 && f[(i + 1) % 3] == 1) return;
+      if (f[i] == 1 && f[(i + 1) % 3] == 0) {
+        for (Triangle& g : faces) std::swap(g[1], g[2]);
+        return;
+      }
+    }
+}
+
+// The ring and the patch as one CGAL mesh, vertex i being position i and
+// face j being face j of ring + patch; nothing when that is not a valid
+// polygon mesh (a ring that pinches).
+std::optional<Mesh> as_mesh(const HoleNeighbourhood& hole, const std::vector<Triangle>& patch) {
+  std::vector<Point> points;
+  for (const Vec3d& p : hole.positions) points.push_back(to_point(p));
+  std::vector<std::array<std::size_t, 3>> polygons;
+  for (const auto* faces : {&hole.ring, &patch})
+    for (const Triangle& t : *faces) polygons.push_back({t[0], t[1], t[2]});
+  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) return std::nullopt;
+  Mesh mesh;
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+  if (mesh.number_of_vertices() != points.size() || mesh.number_of_faces() != polygons.size()) return std::nullopt;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (mesh.point(Mesh::Vertex_index(Index(i))) != points[i]) return std::nullopt;
+  return mesh;
+}
+
+// Refines the patch faces (the faces after the ring) to the density of the
+// faces around them and fairs the vertices it adds; false if fairing fails.
+bool refine_and_fair(Mesh& mesh, std::size_t ring_faces, Fairing fairing) {
+  std::vector<Mesh::Face_index> patch;
+  for (Mesh::Face_index f : mesh.faces())
+    if (std::size_t(f) >= ring_faces) patch.push_back(f);
+  std::vector<Mesh::Vertex_index> added;
+  std::vector<Mesh::Face_index> new_faces;
+  PMP::refine(mesh, patch, std::back_inserter(new_faces), std::back_inserter(added),
+              CGAL::parameters::density_control_factor(std::sqrt(2.0)));
+  if (added.empty() || fairing == Fairing::none) return true;
+  return PMP::fair(mesh, added, CGAL::parameters::fairing_continuity(int(fairing)));
+}
+
+// The patch faces of `mesh` (every face after the ring) in local indices,
+// or nothing if refinement touched a ring face.
+std::optional<Patch> extract_patch(const Mesh& mesh, const HoleNeighbourhood& hole) {
+  Patch patch;
+  for (Mesh::Face_index f : mesh.faces()) {
+    Triangle t{};
+    int k = 0;
+    for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) t[k++] = Index(std::size_t(v));
+    if (std::size_t(f) < hole.ring.size()) {
+      const Triangle& r = hole.ring[std::size_t(f)];
+      if (std::is_permutation(t.begin(), t.end(), r.begin())) continue;
+      return std::nullopt;
+    }
+    patch.faces.push_back(t);
+  }
+  for (std::size_t v = hole.positions.size(); v < mesh.number_of_vertices(); ++v)
+    patch.new_positions.push_back(to_vec(mesh.point(Mesh::Vertex_index(Index(v)))));
+  return patch;
+}
+
+}  // namespace
+
+std::optional<Patch> make_patch(const HoleNeighbourhood& hole, const PatchMethod& method) {
+  std::vector<Triangle> faces = triangulate_loop(hole, method.triangulator);
+  if (faces.empty()) return std::nullopt;
+  orient_along_loop(faces);
+  if (!method.refine) return Patch{{}, std::move(faces)};
+  HoleNeighbourhood local = hole;
+  std::optional<Mesh> mesh = as_mesh(local, faces);
+  if (!mesh) {  // a pinched ring: refine and fair the patch alone, its border held fixed
+    local.ring.clear();
+    mesh = as_mesh(local, faces);
+    if (!mesh) return std::nullopt;
+  }
+  if (!refine_and_fair(*mesh, local.ring.size(), method.fairing) || mesh->has_garbage()) return std::nullopt;
+  return extract_patch(*mesh, local);
+}
+
+}  // namespace mr::hole_fill::detail

@@ -1,0 +1,192 @@
+// hole-fill: every hole closed by a patch that meets the surface only along
+// its loop, every input face kept, on holes built in code.
+#include "mesh_generators.h"
+#include "test_support.h"
+
+#include <mr/check/surface_check.h>
+#include <mr/core/weld.h>
+#include <mr/hole_fill/hole_fill.h>
+#include <mr/io/default_registry.h>
+#include <mr/io/mesh_io.h>
+
+#include <hole_fill_tool.h>
+
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+using namespace mr;
+using hole_fill::HoleOutcome;
+
+namespace {
+
+// `soup` without the faces whose centroid `cut` selects (vertices kept).
+TriangleSoup without_faces(TriangleSoup soup, const std::function<bool(const Vec3d&)>& cut) {
+  std::vector<Triangle> kept;
+  for (const Triangle& t : soup.triangles) {
+    const Vec3d c = (soup.positions[t[0]] + soup.positions[t[1]] + soup.positions[t[2]]) / 3.0;
+    if (!cut(c)) kept.push_back(t);
+  }
+  soup.triangles = std::move(kept);
+  return soup;
+}
+
+// The input's faces come first in the result, over the same positions.
+void require_input_kept(const TriangleSoup& input, const hole_fill::HoleFillResult& result) {
+  const TriangleSoup welded = weld_identical_vertices(input);
+  REQUIRE(result.input_faces == welded.triangles.size());
+  for (std::size_t f = 0; f < welded.triangles.size(); ++f) {
+    REQUIRE(result.surface.triangles[f] == welded.triangles[f]);
+    for (Index v : welded.triangles[f]) REQUIRE(result.surface.positions[v] == welded.positions[v]);
+  }
+}
+
+void require_watertight(const TriangleSoup& surface) {
+  const check::SurfaceReport report = check::check_surface(surface);
+  INFO(check::watertight_failures(report));
+  REQUIRE(report.watertight());
+}
+
+// The new vertex nearest to the z axis (the middle of a cap patch).
+Vec3d middle_of_patch(const hole_fill::HoleFillResult& result, std::size_t input_vertices) {
+  Vec3d best = Vec3d::Constant(std::nan(""));
+  double best_r = INFINITY;
+  for (std::size_t v = input_vertices; v < result.surface.positions.size(); ++v) {
+    const Vec3d& p = result.surface.positions[v];
+    if (p.head<2>().norm() < best_r) best_r = p.head<2>().norm(), best = p;
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST_CASE("a sphere's missing cap is filled with a faired patch close to the sphere", "[hole_fill]") {
+  const TriangleSoup input = without_faces(test::sphere(1.0, 5), [](const Vec3d& c) { return c.z() > 0.8; });
+  const hole_fill::HoleFillResult result = hole_fill::fill_holes(input);
+  REQUIRE(result.holes.size() == 1);
+  REQUIRE(result.holes[0].outcome == HoleOutcome::filled);
+  REQUIRE(result.holes[0].patch_vertices > 10);
+  require_input_kept(input, result);
+  require_watertight(result.surface);
+  // A flat fill would be 0.2 below the sphere at the middle; the faired one is within 2% of the radius.
+  const Vec3d middle = middle_of_patch(result, input.positions.size());
+  INFO("middle of the patch " << middle.transpose());
+  REQUIRE(std::abs(middle.norm() - 1.0) <= 0.02);
+}
+
+TEST_CASE("a cube's missing face is filled flat", "[hole_fill]") {
+  const TriangleSoup input = without_faces(test::cube_soup(), [](const Vec3d& c) { return c.z() == 1.0; });
+  REQUIRE(input.triangles.size() == 10);
+  const hole_fill::HoleFillResult result = hole_fill::fill_holes(input);
+  REQUIRE(result.filled() == 1);
+  REQUIRE(result.holes[0].border_edges == 4);
+  require_input_kept(input, result);
+  require_watertight(result.surface);
+  REQUIRE(std::abs(test::enclosed_volume(result.surface) - 1.0) < 1e-12);
+  for (const Vec3d& p : result.surface.positions) REQUIRE(p.z() <= 1.0);
+}
+
+TEST_CASE("a saddle-shaped hole is filled without crossing itself", "[hole_fill]") {
+  const TriangleSoup input = without_faces(test::sphere(1.0, 5), [](const Vec3d& c) {
+    return c.z() > 0.55 + 0.25 * std::cos(2.0 * std::atan2(c.y(), c.x()));
+  });
+  const hole_fill::HoleFillResult result = hole_fill::fill_holes(input);
+  REQUIRE(result.holes.size() == 1);
+  REQUIRE(result.holes[0].outcome == HoleOutcome::filled);
+  require_input_kept(input, result);
+  require_watertight(result.surface);
+}
+
+TEST_CASE("a fill that would cut through a nearby part is retried until it does not", "[hole_fill]") {
+  // A small closed sphere crosses the plane of the cap's loop: every flat fill meets it.
+  TriangleSoup input = without_faces(test::sphere(1.0, 5), [](const Vec3d& c) { return c.z() > 0.8; });
+  TriangleSoup blob = test::sphere(0.06, 2);
+  for (Vec3d& p : blob.positions) p += Vec3d(0.0, 0.0, 0.79);
+  input.append(blob);
+  hole_fill::HoleFillOptions flat;
+  flat.fairing = hole_fill::Fairing::none;
+  flat.density = hole_fill::Density::coarse;
+  const hole_fill::HoleFillResult result = hole_fill::fill_holes(input, flat);
+  REQUIRE(result.holes.size() == 1);
+  const hole_fill::HoleReport& hole = result.holes[0];
+  INFO(hole.method << " after " << hole.attempts << " attempts");
+  REQUIRE(hole.outcome == HoleOutcome::filled);
+  REQUIRE(hole.attempts > 1);  // the flat patches were refused
+  REQUIRE(hole.patch_vertices > 0);
+  require_input_kept(input, result);
+  require_watertight(result.surface);
+}
+
+TEST_CASE("two holes sharing a border vertex are split into two loops and both filled", "[hole_fill]") {
+  TriangleSoup sphere = test::sphere(1.0, 3);
+  // Two faces around vertex 0 that share no edge: the border pinches at vertex 0.
+  std::vector<std::size_t> around;
+  for (std::size_t f = 0; f < sphere.triangles.size(); ++f)
+    for (Index v : sphere.triangles[f])
+      if (v == 0) around.push_back(f);
+  REQUIRE(around.size() == 4);  // an octahedron's corner
+  std::size_t second = 1;
+  while (second < around.size()) {
+    int shared = 0;
+    for (Index a : sphere.triangles[around[0]])
+      for (Index b : sphere.triangles[around[second]]) shared += a == b;
+    if (shared == 1) break;
+    ++second;
+  }
+  REQUIRE(second < around.size());
+  TriangleSoup input = sphere;
+  input.triangles.erase(input.triangles.begin() + std::ptrdiff_t(std::max(around[0], around[second])));
+  input.triangles.erase(input.triangles.begin() + std::ptrdiff_t(std::min(around[0], around[second])));
+  REQUIRE(check::check_surface(input).nonmanifold_vertices == 1);
+  const hole_fill::HoleFillResult result = hole_fill::fill_holes(input);
+  REQUIRE(result.holes.size() == 2);
+  REQUIRE(result.filled() == 2);
+  for (const hole_fill::HoleReport& h : result.holes) REQUIRE(h.border_edges == 3);
+  require_input_kept(input, result);
+  require_watertight(result.surface);
+}
+
+TEST_CASE("holes above the size limits are left open and counted", "[hole_fill]") {
+  const TriangleSoup input = without_faces(test::cube_soup(), [](const Vec3d& c) { return c.z() == 1.0; });
+  hole_fill::HoleFillOptions options;
+  options.max_boundary = 3;
+  REQUIRE(hole_fill::fill_holes(input, options).holes[0].outcome == HoleOutcome::too_long);
+  options.max_boundary = 0;
+  options.max_diameter = 1.0;  // the loop's box diagonal is sqrt(2)
+  const hole_fill::HoleFillResult result = hole_fill::fill_holes(input, options);
+  REQUIRE(result.holes[0].outcome == HoleOutcome::too_wide);
+  REQUIRE(result.surface.triangles.size() == input.triangles.size());
+}
+
+TEST_CASE("hole-fill writes the filled surface, checked as written, and its stats", "[hole_fill][e2e]") {
+  const test::TempDir dir("hole_fill_tool");
+  const io::Registry registry = io::make_default_registry();
+  const TriangleSoup input = without_faces(test::sphere(1.0, 4), [](const Vec3d& c) { return c.z() > 0.7; });
+  io::write_surface(registry, input, dir / "in.obj");
+  const test::ToolRun run = test::run_tool(tools::hole_fill, {(dir / "in.obj").string(), (dir / "out.glb").string(),
+                                                               "--stats", (dir / "s.json").string(), "-j", "2"});
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+  REQUIRE(run.out.find("1 holes, 1 filled") != std::string::npos);
+  const nlohmann::json stats = nlohmann::json::parse(std::ifstream(dir / "s.json"));
+  REQUIRE(stats["holes_found"] == 1);
+  REQUIRE(stats["holes_filled"] == 1);
+  REQUIRE(stats["watertight"] == true);
+  REQUIRE(stats["holes"][0]["patch_faces"].get<int>() > 0);
+  require_watertight(io::read_surface(registry, dir / "out.glb"));
+
+  for (const char* bad : {"--fair=3", "--density=fine", "--max-diameter=-1"}) {
+    const std::string option(bad);
+    const std::size_t eq = option.find('=');
+    const test::ToolRun usage = test::run_tool(
+        tools::hole_fill, {(dir / "in.obj").string(), (dir / "bad.glb").string(), option.substr(0, eq), option.substr(eq + 1)});
+    REQUIRE(usage.exit_code == 2);
+    REQUIRE(usage.err.find(option.substr(0, eq)) != std::string::npos);
+    REQUIRE(!std::filesystem::exists(dir / "bad.glb"));
+  }
+}

@@ -1,0 +1,28 @@
+#include "surface_output.h"
+
+#include <mr/check/surface_check.h>
+#include <mr/io/mesh_io.h>
+
+namespace mr::tools {
+
+SurfaceWrite write_surface_keeping_watertight(const io::Registry& registry, TriangleSoup surface,
+                                              const std::string& path, io::WriteOptions options) {
+  SurfaceWrite result;
+  result.watertight = !surface.triangles.empty() && check::check_surface(surface).watertight();
+  if (!result.watertight) {
+    io::write_surface(registry, surface, path, options);
+    return result;
+  }
+  Vec3d lo = surface.positions.front(), hi = lo;
+  for (const Vec3d& p : surface.positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const CoordinateGrid grid = io::surface_position_grid(registry, path, options, lo, hi);
+  if (grid.kind() == CoordinateGrid::Kind::quantized) options.draco.position_grid = grid.quantization();
+  result.rounding = repair::round_to_grid(surface, grid);
+  io::write_surface(registry, surface, path, options, check::watertight_file_check(registry, path, &result.written));
+  return result;
+}
+
+}  // namespace mr::tools

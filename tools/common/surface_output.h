@@ -1,0 +1,26 @@
+#pragma once
+// Writing a surface so that what the user receives keeps what the doubles had.
+
+#include <mr/check/written_file.h>
+#include <mr/io/registry.h>
+#include <mr/repair/round_to_grid.h>
+
+#include <string>
+
+namespace mr::tools {
+
+struct SurfaceWrite {
+  bool watertight = false;  ///< watertight in doubles, hence rounded and checked as written
+  repair::GridRoundingStats rounding;
+  check::WrittenFileReport written;  ///< of the written file, when watertight
+};
+
+/// Writes `surface` to `path`. A surface watertight in doubles goes onto
+/// the grid the format stores (repair::round_to_grid, Draco's grid fixed
+/// here) and the file is read back and checked before it is renamed into
+/// place (mr::RunError if it is not watertight); any other surface (open,
+/// pinched, inward) is written as it is.
+SurfaceWrite write_surface_keeping_watertight(const io::Registry& registry, TriangleSoup surface,
+                                              const std::string& path, io::WriteOptions options);
+
+}  // namespace mr::tools
