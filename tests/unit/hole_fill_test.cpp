@@ -10,6 +10,7 @@
 #include <mr/io/mesh_io.h>
 
 #include <hole_fill_tool.h>
+#include <meshrepair.h>
 
 #include <catch2/catch.hpp>
 
@@ -189,4 +190,32 @@ TEST_CASE("hole-fill writes the filled surface, checked as written, and its stat
     REQUIRE(usage.err.find(option.substr(0, eq)) != std::string::npos);
     REQUIRE(!std::filesystem::exists(dir / "bad.glb"));
   }
+}
+
+TEST_CASE("meshrepair fills the holes of an input that lacks nothing else and keeps every face", "[hole_fill][e2e]") {
+  const test::TempDir dir("meshrepair_holes_only");
+  const io::Registry registry = io::make_default_registry();
+  const TriangleSoup input = without_faces(test::sphere(1.0, 4), [](const Vec3d& c) { return c.z() > 0.7 || c.x() > 0.8; });
+  io::write_surface(registry, input, dir / "in.obj");
+  const std::string in = (dir / "in.obj").string();
+
+  const test::ToolRun run = test::run_tool(tools::meshrepair, {in, (dir / "out.obj").string(), "--stats", (dir / "s.json").string()});
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+  const nlohmann::json stats = nlohmann::json::parse(std::ifstream(dir / "s.json"));
+  REQUIRE(stats["path"] == "hole_fill");
+  REQUIRE(stats["holes"]["filled"] == 2);
+  const TriangleSoup out = io::read_surface(registry, dir / "out.obj");
+  require_watertight(out);
+  // OBJ keeps doubles: every input face is in the output, at the same positions.
+  const TriangleSoup welded = weld_identical_vertices(input);
+  for (std::size_t f = 0; f < welded.triangles.size(); ++f)
+    for (int i = 0; i < 3; ++i) REQUIRE(out.positions[out.triangles[f][i]] == welded.positions[welded.triangles[f][i]]);
+
+  const test::ToolRun remesh =
+      test::run_tool(tools::meshrepair, {in, (dir / "remeshed.obj").string(), "--remesh", "--stats", (dir / "r.json").string()});
+  REQUIRE(remesh.exit_code == 0);
+  const nlohmann::json remeshed = nlohmann::json::parse(std::ifstream(dir / "r.json"));
+  REQUIRE(remeshed["path"] == "tetrahedralize");
+  REQUIRE(remeshed["hole_fill_declined"] == "--remesh");
 }

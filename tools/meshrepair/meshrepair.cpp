@@ -1,5 +1,7 @@
 #include "meshrepair.h"
+#include "holes_only_repair.h"
 #include "repair_stats.h"
+#include "surface_output.h"
 
 #include <mr/check/written_file.h>
 #include <mr/cli/run_tool.h>
@@ -31,6 +33,7 @@ struct ToolOptions {
   io::WriteOptions write;
   std::optional<int> draco_position_bits;  ///< unset: chosen from epsilon
   bool cleanup = true;
+  bool remesh = false;  ///< rebuild the surface even when holes are all it lacks
   std::string stats_path;
   bool quiet = false;
   bool verbose = false;
@@ -48,7 +51,8 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       "and gaps are filled). Fast path of the tetrahedralization: background mesh, exact insertion\n"
       "of the input, winding-number filter; then the boundary of the kept tets is made manifold by\n"
       "splitting vertices apart inside the solid (never leaving coincident vertices), peeled, and\n"
-      "cleaned up by collapses and flips inside the envelope of the original input.";
+      "cleaned up by collapses and flips inside the envelope of the original input. An input whose\n"
+      "only defects are holes keeps every face: its holes are closed by faired patches (hole-fill).";
   auto& t = o.tetrahedralize;
   spec.options = {
       {"--epsilon", "-e", "EPS", "envelope radius relative to the bbox diagonal (default 1e-3)",
@@ -66,6 +70,10 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       {"--skip-simplify", "", "",
        "insert the input as it is, without simplifying it inside the envelope first",
        [&](const std::string&) { t.skip_simplify = true; }},
+      {"--remesh", "", "",
+       "rebuild the whole surface through the tet mesh even when holes are its only defect (by default "
+       "those are filled and every input face is kept)",
+       [&](const std::string&) { o.remesh = true; }},
       {"--no-cleanup", "", "", "keep the peeled surface as it is (no collapses or flips)",
        [&](const std::string&) { o.cleanup = false; }},
       {"--draco", "", "", "compress GLB/glTF output with KHR_draco_mesh_compression (.drc is always Draco)",
@@ -119,12 +127,54 @@ std::function<CoordinateGrid(const Vec3d&, const Vec3d&)> output_grid(const io::
   };
 }
 
+// The envelope radius the pipeline would use for `input`.
+double epsilon_for(const TriangleSoup& input, const tetmesh::TetrahedralizeOptions& t) {
+  return t.epsilon_abs > 0.0 ? t.epsilon_abs : t.epsilon_rel * bounding_box_diagonal(input);
+}
+
+std::pair<Vec3d, Vec3d> bounds(const TriangleSoup& soup) {
+  Vec3d lo = soup.positions.front(), hi = lo;
+  for (const Vec3d& p : soup.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  return {lo, hi};
+}
+
+// The holes-only path: its holes filled, the input written back with the
+// patches, checked as written. False (nothing written) when it declines.
+bool try_holes_only(const ToolOptions& options, const io::Registry& registry, const std::vector<std::string>& files,
+                    const TriangleSoup& input, double seconds_read, std::string& declined, std::ostream& out) {
+  if (options.remesh) {
+    declined = "--remesh";
+    return false;
+  }
+  auto start = std::chrono::steady_clock::now();
+  io::WriteOptions write_options = options.write;
+  const auto [lo, hi] = bounds(input);
+  const CoordinateGrid grid =
+      output_grid(registry, files[1], epsilon_for(input, options.tetrahedralize), options, write_options)(lo, hi);
+  const HolesOnlyRepair holes = repair_holes_only(input, grid);
+  declined = holes.declined;
+  if (!holes.fill) return false;
+  const double seconds_fill = seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  const SurfaceWrite written = write_surface_keeping_watertight(registry, holes.fill->surface, files[1], write_options);
+  const double seconds_write = seconds_since(start) - written.written.seconds;
+  if (!options.stats_path.empty())
+    cli::write_stats_file(options.stats_path,
+                          make_holes_only_stats({input, *holes.fill, written, seconds_read, seconds_fill, seconds_write}).dump(2));
+  if (!options.quiet)
+    out << files[0] << ": " << input.triangles.size() << " faces -> " << holes.fill->surface.triangles.size()
+        << " faces, watertight (" << holes.fill->holes.size() << " holes filled, every input face kept)\n";
+  return true;
+}
+
 void run(const ToolOptions& options, const std::vector<std::string>& files, std::ostream& out, std::ostream& err) {
   const io::Registry registry = io::make_default_registry();
   auto start = std::chrono::steady_clock::now();
   const TriangleSoup input = io::read_surface(registry, files[0]);
   const double seconds_read = seconds_since(start);
-
+  std::string declined;
+  if (try_holes_only(options, registry, files, input, seconds_read, declined, out)) return;
+  if (options.verbose && !options.quiet) err << "meshrepair: rebuilding the surface (" << declined << ")\n";
   tetmesh::PipelineOptions pipeline_options;
   pipeline_options.tetrahedralize = options.tetrahedralize;
   pipeline_options.filter = true;
@@ -155,7 +205,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   const double seconds_write = seconds_since(start) - written.seconds;
   if (!options.stats_path.empty())
     cli::write_stats_file(options.stats_path,
-                          make_repair_stats({input, pipeline, repaired, written, seconds_read, seconds_write}).dump(2));
+                          make_repair_stats({input, pipeline, repaired, written, seconds_read, seconds_write, declined}).dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << repaired.surface.triangles.size()
         << " faces, watertight (" << repaired.manifold.nonmanifold_edges_found + repaired.manifold.nonmanifold_vertices_found

@@ -31,11 +31,10 @@ std::int64_t genus(const check::SurfaceReport& r) {
   return static_cast<std::int64_t>(r.components) - (v - edges + f) / 2;
 }
 
-nlohmann::json output_figures(const RepairRun& run) {
-  const TriangleSoup& surface = run.repair.surface;
+nlohmann::json output_figures(const TriangleSoup& surface, const TriangleSoup& input) {
   const check::SurfaceReport r = check::check_surface(surface);
-  const check::DistanceReport to_input = check::one_sided_distance(surface, run.input);
-  const check::DistanceReport from_input = check::one_sided_distance(run.input, surface);
+  const check::DistanceReport to_input = check::one_sided_distance(surface, input);
+  const check::DistanceReport from_input = check::one_sided_distance(input, surface);
   return {{"faces", r.faces},
           {"vertices", r.vertices},
           {"components", r.components},
@@ -103,15 +102,41 @@ nlohmann::json stage_seconds(const RepairRun& run) {
 
 nlohmann::json make_repair_stats(const RepairRun& run) {
   const auto start = std::chrono::steady_clock::now();
-  nlohmann::json stats = {{"input", input_defects(run.input)},
+  nlohmann::json stats = {{"path", "tetrahedralize"},
+                          {"hole_fill_declined", run.hole_fill_declined},
+                          {"input", input_defects(run.input)},
                           {"epsilon_abs", run.pipeline.parameters.epsilon},
                           {"bbox_diagonal", run.pipeline.parameters.diagonal},
                           {"kept_tets", std::count(run.pipeline.mesh.tet_labels.begin(),
                                                    run.pipeline.mesh.tet_labels.end(), 1)},
                           {"repair", repair_figures(run.repair)},
-                          {"output", output_figures(run)},
+                          {"output", output_figures(run.repair.surface, run.input)},
                           {"written_file", written_figures(run.written.surface)},
                           {"stages", stage_seconds(run)}};
+  stats["seconds_measuring"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+nlohmann::json make_holes_only_stats(const HolesOnlyRun& run) {
+  const auto start = std::chrono::steady_clock::now();
+  std::size_t patch_faces = 0, patch_vertices = 0;
+  for (const hole_fill::HoleReport& h : run.fill.holes) patch_faces += h.patch_faces, patch_vertices += h.patch_vertices;
+  nlohmann::json stats = {
+      {"path", "hole_fill"},
+      {"input", input_defects(run.input)},
+      {"holes", {{"found", run.fill.holes.size()},
+                 {"filled", run.fill.filled()},
+                 {"kept_input_faces", run.fill.input_faces},
+                 {"patch_faces", patch_faces},
+                 {"patch_vertices", patch_vertices}}},
+      {"repair", {{"rounded_vertices", run.written.rounding.moved},
+                  {"rounded_off_nearest", run.written.rounding.nearest_refused}}},
+      {"output", output_figures(run.fill.surface, run.input)},
+      {"written_file", written_figures(run.written.written.surface)},
+      {"stages", nlohmann::json::array({{{"name", "read"}, {"seconds", run.seconds_read}},
+                                        {{"name", "hole_fill"}, {"seconds", run.seconds_fill}},
+                                        {{"name", "write"}, {"seconds", run.seconds_write}},
+                                        {{"name", "check_written"}, {"seconds", run.written.written.seconds}}})}};
   stats["seconds_measuring"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }

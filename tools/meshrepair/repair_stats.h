@@ -2,7 +2,10 @@
 // The --stats JSON of meshrepair: defects of the input, figures of the
 // output (measured independently with mr::check), and time per stage.
 
+#include "surface_output.h"
+
 #include <mr/check/written_file.h>
+#include <mr/hole_fill/hole_fill.h>
 #include <mr/core/triangle_soup.h>
 #include <mr/repair/repair.h>
 #include <mr/tetmesh/tetrahedralize.h>
@@ -18,8 +21,21 @@ struct RepairRun {
   const check::WrittenFileReport& written;
   double seconds_read = 0.0;
   double seconds_write = 0.0;
+  std::string hole_fill_declined;  ///< why the holes-only path was not taken
 };
 
 nlohmann::json make_repair_stats(const RepairRun& run);
+
+/// The holes-only path (holes_only_repair.h): input, holes, output figures, seconds.
+struct HolesOnlyRun {
+  const TriangleSoup& input;
+  const hole_fill::HoleFillResult& fill;
+  const SurfaceWrite& written;
+  double seconds_read = 0.0;
+  double seconds_fill = 0.0;
+  double seconds_write = 0.0;
+};
+
+nlohmann::json make_holes_only_stats(const HolesOnlyRun& run);
 
 }  // namespace mr::tools

@@ -3,7 +3,10 @@
 #include <mr/kernel/intersections.h>
 #include <mr/kernel/predicates.h>
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 
@@ -120,6 +123,29 @@ std::string FilledSurface::refusal(const GlobalPatch& patch) const {
   if (std::string why = vertex_refusal(patch); !why.empty()) return why;
   if (std::string why = edge_refusal(patch); !why.empty()) return why;
   return intersection_refusal(patch);
+}
+
+bool FilledSurface::meets_itself() const {
+  std::atomic<bool> met{false};
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, std::uint32_t(soup_.triangles.size()), 256),
+                    [&](const tbb::blocked_range<std::uint32_t>& range) {
+                      std::vector<std::uint32_t> near;
+                      for (std::uint32_t f = range.begin(); f != range.end() && !met; ++f) {
+                        const Triangle& t = soup_.triangles[f];
+                        const Vec3d &p = soup_.positions[t[0]], &q = soup_.positions[t[1]], &r = soup_.positions[t[2]];
+                        if (repeats_a_vertex(t) || collinear(p, q, r)) continue;
+                        const Box b = box_of(p, q, r);
+                        boxes_.query(b.lo, b.hi, near);
+                        for (std::uint32_t g : near) {
+                          if (g <= f) continue;
+                          const Triangle& s = soup_.triangles[g];
+                          const Vec3d &a = soup_.positions[s[0]], &c = soup_.positions[s[1]], &d = soup_.positions[s[2]];
+                          if (collinear(a, c, d)) continue;
+                          if (intersect_triangles(p, q, r, a, c, d).improper()) met = true;
+                        }
+                      }
+                    });
+  return met;
 }
 
 void FilledSurface::add(const GlobalPatch& patch) {

@@ -35,6 +35,9 @@ class FilledSurface {
   /// an empty string when it may. Decided with exact predicates.
   std::string refusal(const GlobalPatch& patch) const;
   void add(const GlobalPatch& patch);
+  /// Whether two faces of the surface meet except in the vertices and
+  /// edges they share (degenerate faces skipped). Parallel (TBB).
+  bool meets_itself() const;
 
  private:
   struct PositionHash {

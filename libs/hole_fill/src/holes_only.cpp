@@ -1,0 +1,56 @@
+#include <mr/hole_fill/holes_only.h>
+
+#include "filled_surface.h"
+
+#include <mr/core/weld.h>
+#include <mr/kernel/predicates.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <set>
+#include <unordered_map>
+
+namespace mr::hole_fill {
+namespace {
+
+std::uint64_t directed_key(Index a, Index b) { return (std::uint64_t(a) << 32) | b; }
+
+std::string face_refusal(const TriangleSoup& soup) {
+  std::set<std::array<Index, 3>> seen;
+  for (const Triangle& t : soup.triangles) {
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0] ||
+        collinear(soup.positions[t[0]], soup.positions[t[1]], soup.positions[t[2]]))
+      return "a face is degenerate";
+    std::array<Index, 3> sorted = t;
+    std::sort(sorted.begin(), sorted.end());
+    if (!seen.insert(sorted).second) return "a face is repeated";
+  }
+  return {};
+}
+
+// Every directed edge once (else an edge has more than two faces or two
+// faces disagree on orientation); some edge without its reverse (a hole).
+std::string edge_refusal(const TriangleSoup& soup) {
+  std::unordered_map<std::uint64_t, int> directed;
+  directed.reserve(soup.triangles.size() * 3);
+  for (const Triangle& t : soup.triangles)
+    for (int i = 0; i < 3; ++i)
+      if (++directed[directed_key(t[i], t[(i + 1) % 3])] > 1)
+        return "an edge has more than two faces or its faces disagree on orientation";
+  for (const auto& [key, count] : directed)
+    if (!directed.count(directed_key(Index(key & 0xffffffffu), Index(key >> 32)))) return {};
+  return "no hole";
+}
+
+}  // namespace
+
+std::string defects_other_than_holes(const TriangleSoup& input) {
+  TriangleSoup welded = weld_identical_vertices(input);
+  if (std::string why = face_refusal(welded); !why.empty()) return why;
+  if (std::string why = edge_refusal(welded); !why.empty()) return why;
+  if (detail::FilledSurface(std::move(welded)).meets_itself()) return "faces meet away from their shared vertices and edges";
+  return {};
+}
+
+}  // namespace mr::hole_fill

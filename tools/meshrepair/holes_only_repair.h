@@ -1,0 +1,25 @@
+#pragma once
+// meshrepair's first path: an input whose only defects are holes gets them
+// closed by hole-fill's patches, every input face kept, instead of being
+// rebuilt by the tetrahedral pipeline.
+
+#include <mr/core/coordinate_grid.h>
+#include <mr/hole_fill/hole_fill.h>
+
+#include <optional>
+#include <string>
+
+namespace mr::tools {
+
+struct HolesOnlyRepair {
+  std::string declined;                         ///< why the path was not taken; empty when it was
+  std::optional<hole_fill::HoleFillResult> fill;  ///< set when it was: a watertight surface, outward
+};
+
+/// Fills the holes of `input` when they are all it lacks (hole_fill::
+/// defects_other_than_holes), new vertices on `grid`; declines when it has
+/// other defects or when the filled surface is not closed, manifold and
+/// free of self-intersections (a hole that could not be filled).
+HolesOnlyRepair repair_holes_only(const TriangleSoup& input, const CoordinateGrid& grid);
+
+}  // namespace mr::tools
