@@ -123,6 +123,26 @@ TEST_CASE("a fill that would cut through a nearby part is retried until it does 
   require_watertight(result.surface);
 }
 
+TEST_CASE("a hole with an island is filled between the two loops, one part", "[hole_fill]") {
+  // A band cut out of a sphere: the cap above it floats inside the hole.
+  const TriangleSoup input =
+      without_faces(test::sphere(1.0, 5), [](const Vec3d& c) { return c.z() > 0.6 && c.z() < 0.7; });
+  REQUIRE(check::check_surface(input).components == 2);
+  const hole_fill::HoleFillResult result = hole_fill::fill_holes(input);
+  REQUIRE(result.holes.size() == 1);
+  const hole_fill::HoleReport& hole = result.holes[0];
+  INFO(hole.method);
+  REQUIRE(hole.islands == 1);
+  REQUIRE(hole.outcome == HoleOutcome::filled);
+  require_input_kept(input, result);
+  require_watertight(result.surface);
+  // Filling each loop on its own would close the cap into a second part.
+  REQUIRE(check::check_surface(result.surface).components == 1);
+  // The band is put back close to the sphere.
+  for (std::size_t v = input.positions.size(); v < result.surface.positions.size(); ++v)
+    REQUIRE(std::abs(result.surface.positions[v].norm() - 1.0) < 0.02);
+}
+
 TEST_CASE("two holes sharing a border vertex are split into two loops and both filled", "[hole_fill]") {
   TriangleSoup sphere = test::sphere(1.0, 3);
   // Two faces around vertex 0 that share no edge: the border pinches at vertex 0.

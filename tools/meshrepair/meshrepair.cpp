@@ -149,8 +149,8 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry, co
   auto start = std::chrono::steady_clock::now();
   io::WriteOptions write_options = options.write;
   const auto [lo, hi] = bounds(input);
-  const CoordinateGrid grid =
-      output_grid(registry, files[1], epsilon_for(input, options.tetrahedralize), options, write_options)(lo, hi);
+  const double epsilon = epsilon_for(input, options.tetrahedralize);
+  const CoordinateGrid grid = output_grid(registry, files[1], epsilon, options, write_options)(lo, hi);
   const HolesOnlyRepair holes = repair_holes_only(input, grid);
   declined = holes.declined;
   if (!holes.fill) return false;
@@ -160,7 +160,7 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry, co
   const double seconds_write = seconds_since(start) - written.written.seconds;
   if (!options.stats_path.empty())
     cli::write_stats_file(options.stats_path,
-                          make_holes_only_stats({input, *holes.fill, written, seconds_read, seconds_fill, seconds_write}).dump(2));
+                          make_holes_only_stats({input, *holes.fill, written, epsilon, seconds_read, seconds_fill, seconds_write}).dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << holes.fill->surface.triangles.size()
         << " faces, watertight (" << holes.fill->holes.size() << " holes filled, every input face kept)\n";

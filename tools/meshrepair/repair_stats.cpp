@@ -124,6 +124,8 @@ nlohmann::json make_holes_only_stats(const HolesOnlyRun& run) {
   nlohmann::json stats = {
       {"path", "hole_fill"},
       {"input", input_defects(run.input)},
+      {"epsilon_abs", run.epsilon},
+      {"bbox_diagonal", bounding_box_diagonal(run.input)},
       {"holes", {{"found", run.fill.holes.size()},
                  {"filled", run.fill.filled()},
                  {"kept_input_faces", run.fill.input_faces},

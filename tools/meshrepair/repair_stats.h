@@ -31,6 +31,7 @@ struct HolesOnlyRun {
   const TriangleSoup& input;
   const hole_fill::HoleFillResult& fill;
   const SurfaceWrite& written;
+  double epsilon = 0.0;  ///< the envelope the tetrahedral path would have used (sets Draco's bits)
   double seconds_read = 0.0;
   double seconds_fill = 0.0;
   double seconds_write = 0.0;

@@ -2,7 +2,10 @@
 // fairing templates (compile time).
 #include "patch.h"
 
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Polygon_mesh_processing/fair.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/refine.h>
@@ -29,6 +32,66 @@ struct LoopFace {
   LoopFace(int a, int b, int c) : corners{Index(a), Index(b), Index(c)} {}
   Triangle corners;
 };
+
+// A hole with islands: the constrained Delaunay triangulation of every
+// loop in the hole's plane, faces kept where they are inside the outer loop
+// and outside the islands (an odd number of loops crossed from outside).
+// Nothing when loops cross or touch in the plane (the triangulation then
+// has points of its own).
+using CdtVertexBase = CGAL::Triangulation_vertex_base_with_info_2<Index, Kernel>;
+using CdtFaceBase =
+    CGAL::Constrained_triangulation_face_base_2<Kernel, CGAL::Triangulation_face_base_with_info_2<int, Kernel>>;
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
+    Kernel, CGAL::Triangulation_data_structure_2<CdtVertexBase, CdtFaceBase>, CGAL::Exact_predicates_tag>;
+
+void mark_nesting(Cdt& cdt) {
+  for (Cdt::Face_handle f : cdt.all_face_handles()) f->info() = -1;
+  std::vector<Cdt::Face_handle> frontier{cdt.infinite_face()}, next;
+  cdt.infinite_face()->info() = 0;
+  for (int level = 0; !frontier.empty(); ++level) {
+    // Flood the current level; faces across a constraint start the next one.
+    while (!frontier.empty()) {
+      Cdt::Face_handle f = frontier.back();
+      frontier.pop_back();
+      for (int i = 0; i < 3; ++i) {
+        Cdt::Face_handle g = f->neighbor(i);
+        if (g->info() != -1) continue;
+        if (cdt.is_constrained({f, i})) {
+          next.push_back(g);
+        } else {
+          g->info() = level;
+          frontier.push_back(g);
+        }
+      }
+    }
+    for (Cdt::Face_handle g : next)
+      if (g->info() == -1) g->info() = level + 1, frontier.push_back(g);
+    next.clear();
+  }
+}
+
+std::vector<Triangle> triangulate_with_islands(const HoleNeighbourhood& hole) {
+  Cdt cdt;
+  std::size_t first = 0;
+  std::vector<std::size_t> sizes{hole.loop_size};
+  sizes.insert(sizes.end(), hole.island_sizes.begin(), hole.island_sizes.end());
+  for (std::size_t size : sizes) {
+    std::vector<Cdt::Vertex_handle> loop;
+    for (std::size_t i = first; i < first + size; ++i) {
+      loop.push_back(cdt.insert(Kernel::Point_2(hole.projected[i].x(), hole.projected[i].y())));
+      loop.back()->info() = Index(i);
+    }
+    for (std::size_t i = 0; i < size; ++i) cdt.insert_constraint(loop[i], loop[(i + 1) % size]);
+    first += size;
+  }
+  // Loops crossing in the plane add points, coinciding ones merge: either way the count differs.
+  if (cdt.number_of_vertices() != first) return {};
+  mark_nesting(cdt);
+  std::vector<Triangle> faces;
+  for (Cdt::Face_handle f : cdt.finite_face_handles())
+    if (f->info() % 2 == 1) faces.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+  return faces;
+}
 
 std::vector<Triangle> triangulate_loop(const HoleNeighbourhood& hole, Triangulator triangulator) {
   std::vector<Point> points, third;
@@ -114,7 +177,8 @@ std::optional<Patch> extract_patch(const Mesh& mesh, const HoleNeighbourhood& ho
 }  // namespace
 
 std::optional<Patch> make_patch(const HoleNeighbourhood& hole, const PatchMethod& method) {
-  std::vector<Triangle> faces = triangulate_loop(hole, method.triangulator);
+  std::vector<Triangle> faces =
+      hole.island_sizes.empty() ? triangulate_loop(hole, method.triangulator) : triangulate_with_islands(hole);
   if (faces.empty()) return std::nullopt;
   orient_along_loop(faces);
   if (!method.refine) return Patch{{}, std::move(faces)};

@@ -2,6 +2,7 @@
 
 #include "boundary_loops.h"
 #include "filled_surface.h"
+#include "islands.h"
 #include "patch.h"
 
 #include <mr/core/weld.h>
@@ -34,6 +35,7 @@ namespace {
 
 using detail::BorderLoop;
 using detail::GlobalPatch;
+using detail::Hole;
 using detail::HoleNeighbourhood;
 using detail::PatchMethod;
 using detail::Triangulator;
@@ -60,8 +62,8 @@ struct LocalHole {
   std::vector<Index> to_global;
 };
 
-LocalHole gather_neighbourhood(const TriangleSoup& soup, const VertexFaces& around, const BorderLoop& loop,
-                               int rings) {
+LocalHole gather_neighbourhood(const TriangleSoup& soup, const VertexFaces& around, const Hole& hole, int rings) {
+  const BorderLoop& loop = hole.outer;
   LocalHole local;
   std::unordered_map<Index, Index> to_local;
   auto local_of = [&](Index v) {
@@ -71,6 +73,14 @@ LocalHole gather_neighbourhood(const TriangleSoup& soup, const VertexFaces& arou
   };
   for (Index v : loop.vertices) local_of(v);
   local.hole.loop_size = loop.vertices.size();
+  if (!hole.islands.empty()) {
+    for (const BorderLoop& island : hole.islands) {
+      for (Index v : island.vertices) local_of(v);
+      local.hole.island_sizes.push_back(island.vertices.size());
+    }
+    const detail::HolePlane plane = detail::hole_plane(soup, loop);
+    for (Index v : local.to_global) local.hole.projected.push_back(plane.project(soup.positions[v]));
+  }
   for (Index v : loop.opposite) local.hole.opposite.push_back(soup.positions[v]);
   std::vector<std::uint8_t> taken(soup.triangles.size(), 0);
   std::size_t frontier_begin = 0;
@@ -92,8 +102,12 @@ LocalHole gather_neighbourhood(const TriangleSoup& soup, const VertexFaces& arou
 // The methods tried in turn: the one asked for, then others that may avoid
 // what made it fail (a different triangulation; without or with new
 // vertices, which can bend the patch away from a nearby part).
-std::vector<PatchMethod> methods_to_try(const HoleFillOptions& o, std::size_t loop_size) {
+std::vector<PatchMethod> methods_to_try(const HoleFillOptions& o, const Hole& hole) {
+  const std::size_t loop_size = hole.outer.vertices.size();
   const bool refine = o.density == Density::keep;
+  if (!hole.islands.empty())  // triangulated in the plane; refined and faired or not
+    return {{Triangulator::plane_2d, refine, o.fairing},
+            {Triangulator::plane_2d, !refine, refine ? Fairing::none : Fairing::tangent}};
   std::vector<PatchMethod> all = {
       {Triangulator::delaunay_3d, refine, o.fairing},
       {Triangulator::plane_2d, refine, o.fairing},
@@ -135,14 +149,15 @@ GlobalPatch to_global(const detail::Patch& patch, const LocalHole& local, Index 
 }
 
 struct HoleWork {
-  BorderLoop loop;
+  Hole hole;
+  bool prepared = false;
   LocalHole local;
   std::vector<PatchMethod> methods;
   std::optional<detail::Patch> first;  ///< the first method's patch, made in parallel
   HoleReport report;
 };
 
-double diameter(const TriangleSoup& soup, const BorderLoop& loop) {
+double diameter(const TriangleSoup& soup, const BorderLoop& loop) {  // of the loop's box
   Vec3d lo = soup.positions[loop.vertices.front()], hi = lo;
   for (Index v : loop.vertices) {
     lo = lo.cwiseMin(soup.positions[v]);
@@ -177,36 +192,56 @@ void fill_one(HoleWork& work, detail::FilledSurface& surface, const HoleFillOpti
   work.report.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+HoleWork make_work(const TriangleSoup& welded, Hole hole, const HoleFillOptions& options) {
+  HoleWork w;
+  w.report.border_edges = hole.outer.vertices.size();
+  for (const BorderLoop& island : hole.islands) w.report.border_edges += island.vertices.size();
+  w.report.islands = hole.islands.size();
+  w.report.diameter = diameter(welded, hole.outer);
+  w.report.outcome = selection(w.report, options);
+  w.hole = std::move(hole);
+  return w;
+}
+
+// The neighbourhood, the methods and the first method's patch: the part
+// of the work that needs no other hole (run in parallel).
+void prepare(HoleWork& w, const TriangleSoup& welded, const VertexFaces& around, const HoleFillOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  w.local = gather_neighbourhood(welded, around, w.hole, int(options.fairing) + 1);
+  w.methods = methods_to_try(options, w.hole);
+  w.first = detail::make_patch(w.local.hole, w.methods.front());
+  w.prepared = true;
+  w.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 }  // namespace
 
 HoleFillResult fill_holes(const TriangleSoup& input, const HoleFillOptions& options) {
-  TriangleSoup welded = weld_identical_vertices(input);
+  const TriangleSoup welded = weld_identical_vertices(input);
   const VertexFaces around = faces_around_vertices(welded);
   std::vector<HoleWork> work;
-  for (BorderLoop& loop : detail::find_border_loops(welded)) {
-    HoleWork w;
-    w.report.border_edges = loop.vertices.size();
-    w.report.diameter = diameter(welded, loop);
-    w.report.outcome = selection(w.report, options);
-    w.loop = std::move(loop);
-    work.push_back(std::move(w));
-  }
-  const int rings = int(options.fairing) + 1;
+  for (Hole& hole : detail::group_islands(welded, detail::find_border_loops(welded)))
+    work.push_back(make_work(welded, std::move(hole), options));
   tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
-    HoleWork& w = work[i];
-    if (w.report.outcome != HoleOutcome::failed) return;
-    const auto start = std::chrono::steady_clock::now();
-    w.local = gather_neighbourhood(welded, around, w.loop, rings);
-    w.methods = methods_to_try(options, w.loop.vertices.size());
-    w.first = detail::make_patch(w.local.hole, w.methods.front());
-    w.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (work[i].report.outcome == HoleOutcome::failed) prepare(work[i], welded, around, options);
   });
   HoleFillResult result;
   result.input_faces = welded.triangles.size();
-  detail::FilledSurface surface(std::move(welded));
-  for (HoleWork& w : work) {
-    if (w.report.outcome == HoleOutcome::failed) fill_one(w, surface, options);
-    result.holes.push_back(w.report);
+  detail::FilledSurface surface(welded);
+  // Accepted in order; a hole with islands that no patch fills is retried
+  // as separate loops, appended to the work.
+  for (std::size_t i = 0; i < work.size(); ++i) {
+    if (work[i].report.outcome == HoleOutcome::failed) {
+      if (!work[i].prepared) prepare(work[i], welded, around, options);
+      fill_one(work[i], surface, options);
+    }
+    if (work[i].report.outcome == HoleOutcome::failed && !work[i].hole.islands.empty()) {
+      Hole joined = std::move(work[i].hole);
+      work.push_back(make_work(welded, {std::move(joined.outer), {}}, options));
+      for (BorderLoop& island : joined.islands) work.push_back(make_work(welded, {std::move(island), {}}, options));
+      continue;
+    }
+    result.holes.push_back(work[i].report);
   }
   result.surface = surface.surface();
   return result;

@@ -29,6 +29,12 @@ struct PatchMethod {
 /// `positions`.
 struct HoleNeighbourhood {
   std::size_t loop_size = 0;
+  /// Holes with islands: the islands' loops follow the outer loop's
+  /// vertices, `island_sizes` vertices each, and `projected` holds every
+  /// loop vertex in the hole's plane (outer loop counter-clockwise); such
+  /// a hole is triangulated in that plane whatever the method says.
+  std::vector<std::size_t> island_sizes;
+  std::vector<Eigen::Vector2d> projected;
   std::vector<Vec3d> positions;
   std::vector<Vec3d> opposite;  ///< per loop edge, the third corner of its input face
   std::vector<Triangle> ring;
