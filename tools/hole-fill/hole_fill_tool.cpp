@@ -43,7 +43,8 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       "density around it and faired so that it meets the surface smoothly. A patch must meet the\n"
       "surface only along its loop, decided exactly; one that does not is retried with other\n"
       "triangulations, with and without new vertices. Input faces and vertices are kept as they\n"
-      "are (to the precision OUT stores). Exit 1 when a selected hole could not be filled.";
+      "are (to the precision OUT stores). Exit 1 when a selected hole could not be filled or border\n"
+      "edges form no loop; -v and --stats say why for each hole.";
   spec.options = {
       {"--max-boundary", "", "N", "leave open holes of more than N border edges",
        [&](const std::string& v) { o.fill.max_boundary = std::size_t(cli::parse_int("--max-boundary", v, 3, INT_MAX)); }},
@@ -109,6 +110,7 @@ nlohmann::json make_stats(const FillRun& r) {
                      {"diameter", h.diameter},
                      {"outcome", hole_fill::to_string(h.outcome)},
                      {"method", h.method},
+                     {"why", h.why},
                      {"attempts", h.attempts},
                      {"patch_faces", h.patch_faces},
                      {"patch_vertices", h.patch_vertices},
@@ -122,6 +124,7 @@ nlohmann::json make_stats(const FillRun& r) {
           {"holes_filled", count(r, HoleOutcome::filled)},
           {"holes_skipped", {{"too_long", count(r, HoleOutcome::too_long)}, {"too_wide", count(r, HoleOutcome::too_wide)}}},
           {"holes_failed", count(r, HoleOutcome::failed)},
+          {"open_border_edges", r.result.open_border_edges},
           {"patch_faces", patch_faces},
           {"patch_vertices", patch_vertices},
           {"watertight", r.written.watertight},
@@ -137,6 +140,8 @@ void print_holes(const FillRun& r, std::ostream& err) {
     err << "hole-fill: hole " << i << ": " << h.border_edges << " border edges, " << hole_fill::to_string(h.outcome);
     if (h.outcome == hole_fill::HoleOutcome::filled)
       err << " by " << h.method << " (" << h.patch_faces << " faces, " << h.seconds << " s)";
+    else if (h.outcome == hole_fill::HoleOutcome::failed)
+      err << " (" << h.attempts << " patches refused; last: " << h.why << ")";
     err << "\n";
   }
 }
@@ -156,10 +161,13 @@ int hole_fill(const std::vector<std::string>& args, std::ostream& out, std::ostr
       out << files[0] << ": " << r.result.holes.size() << " holes, " << r.result.filled() << " filled ("
           << r.input_faces << " -> " << r.result.surface.triangles.size() << " faces"
           << (r.written.watertight ? ", watertight" : "") << ")\n";
+    std::string unfilled;
     if (failed > 0)
-      throw RunError(files[0] + ": " + std::to_string(failed) +
-                     " holes could not be filled without the patch meeting the surface (the others are filled in " +
-                     files[1] + ")");
+      unfilled = std::to_string(failed) + " holes could not be filled without the patch meeting the surface";
+    if (r.result.open_border_edges > 0)
+      unfilled += (unfilled.empty() ? "" : "; ") + std::to_string(r.result.open_border_edges) +
+                  " border edges are on no loop (they end where an edge of three or more faces meets the border)";
+    if (!unfilled.empty()) throw RunError(files[0] + ": " + unfilled + " (the rest is written to " + files[1] + ")");
   });
 }
 

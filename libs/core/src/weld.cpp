@@ -18,9 +18,11 @@ struct BitsHash {
   }
 };
 
+// Adding +0 turns -0 into +0: the two are the same coordinate (a file
+// that writes "-0" on one side of a seam and "0" on the other is closed).
 Bits bits_of(const Vec3d& p) {
-  return {std::bit_cast<std::uint64_t>(p.x()), std::bit_cast<std::uint64_t>(p.y()),
-          std::bit_cast<std::uint64_t>(p.z())};
+  return {std::bit_cast<std::uint64_t>(p.x() + 0.0), std::bit_cast<std::uint64_t>(p.y() + 0.0),
+          std::bit_cast<std::uint64_t>(p.z() + 0.0)};
 }
 
 }  // namespace

@@ -14,6 +14,12 @@ struct BorderEdge {
   bool used = false;
 };
 
+// One step of a walk: an edge and whether it was walked from `to` to `from`.
+struct Step {
+  std::size_t edge;
+  bool reversed;
+};
+
 std::uint64_t edge_key(Index a, Index b) {
   if (a > b) std::swap(a, b);
   return (std::uint64_t(a) << 32) | b;
@@ -39,53 +45,73 @@ std::vector<BorderEdge> border_edges(const TriangleSoup& soup) {
   return border;
 }
 
+Index start_of(const BorderEdge& e, bool reversed) { return reversed ? e.to : e.from; }
+Index end_of(const BorderEdge& e, bool reversed) { return reversed ? e.from : e.to; }
+
+// The loop of `steps`, turned the way most of its edges' faces ask (they
+// all agree where the faces around the hole are oriented consistently).
+BorderLoop make_loop(const std::vector<BorderEdge>& edges, std::vector<Step> steps) {
+  const auto forward = std::count_if(steps.begin(), steps.end(), [](const Step& s) { return !s.reversed; });
+  if (2 * std::size_t(forward) < steps.size()) {
+    std::reverse(steps.begin(), steps.end());
+    for (Step& s : steps) s.reversed = !s.reversed;
+  }
+  BorderLoop loop;
+  for (const Step& s : steps) {
+    loop.vertices.push_back(start_of(edges[s.edge], s.reversed));
+    loop.opposite.push_back(edges[s.edge].opposite);
+  }
+  return loop;
+}
+
 // Walks from `start`, cutting off a loop each time the walk returns to a
-// vertex on its path, until the path is empty (it always ends where it
-// began: every vertex has as many border edges in as out).
-void walk_loops(std::vector<BorderEdge>& edges, const std::unordered_multimap<Index, std::size_t>& outgoing,
-                std::size_t start, std::vector<BorderLoop>& loops) {
-  std::vector<std::size_t> path;                  // edge ids
-  std::unordered_map<Index, std::size_t> on_path; // vertex -> position in path of the edge leaving it
-  std::size_t current = start;
+// vertex on its path. Edges are followed either way round, so a border
+// whose faces disagree on orientation still closes. Returns the number of
+// edges left on a path that cannot close (a vertex with an odd number of
+// border edges).
+std::size_t walk_loops(std::vector<BorderEdge>& edges, const std::unordered_multimap<Index, std::size_t>& incident,
+                       std::size_t start, std::vector<BorderLoop>& loops) {
+  std::vector<Step> path;
+  std::unordered_map<Index, std::size_t> on_path;  // vertex -> position of the step leaving it
+  Step step{start, false};
   while (true) {
-    BorderEdge& e = edges[current];
+    BorderEdge& e = edges[step.edge];
     e.used = true;
-    on_path[e.from] = path.size();
-    path.push_back(current);
-    auto back = on_path.find(e.to);
+    on_path[start_of(e, step.reversed)] = path.size();
+    path.push_back(step);
+    const Index head = end_of(e, step.reversed);
+    auto back = on_path.find(head);
     if (back != on_path.end()) {
-      BorderLoop loop;
-      for (std::size_t k = back->second; k < path.size(); ++k) {
-        loop.vertices.push_back(edges[path[k]].from);
-        loop.opposite.push_back(edges[path[k]].opposite);
-        on_path.erase(edges[path[k]].from);
-      }
-      path.resize(back->second);
-      loops.push_back(std::move(loop));
-      if (path.empty()) return;
+      const std::size_t first = back->second;
+      for (std::size_t k = first; k < path.size(); ++k) on_path.erase(start_of(edges[path[k].edge], path[k].reversed));
+      loops.push_back(make_loop(edges, std::vector<Step>(path.begin() + std::ptrdiff_t(first), path.end())));
+      path.resize(first);
+      if (path.empty()) return 0;
     }
-    // Continue from the head of the path with the lowest unused edge leaving it.
-    const Index head = edges[current].to;
+    // Go on from the head with the lowest unused edge at it, either way round.
     std::size_t next = edges.size();
-    auto [first, last] = outgoing.equal_range(head);
-    for (auto it = first; it != last; ++it)
+    auto [lo, hi] = incident.equal_range(head);
+    for (auto it = lo; it != hi; ++it)
       if (!edges[it->second].used) next = std::min(next, it->second);
-    if (next == edges.size()) return;  // only on an inconsistent input; the loop stays open
-    current = next;
+    if (next == edges.size()) return path.size();
+    step = {next, edges[next].from != head};
   }
 }
 
 }  // namespace
 
-std::vector<BorderLoop> find_border_loops(const TriangleSoup& welded) {
+BorderLoops find_border_loops(const TriangleSoup& welded) {
   std::vector<BorderEdge> edges = border_edges(welded);
-  std::unordered_multimap<Index, std::size_t> outgoing;
-  outgoing.reserve(edges.size());
-  for (std::size_t i = 0; i < edges.size(); ++i) outgoing.emplace(edges[i].from, i);
-  std::vector<BorderLoop> loops;
+  std::unordered_multimap<Index, std::size_t> incident;
+  incident.reserve(2 * edges.size());
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    incident.emplace(edges[i].from, i);
+    incident.emplace(edges[i].to, i);
+  }
+  BorderLoops result;
   for (std::size_t i = 0; i < edges.size(); ++i)
-    if (!edges[i].used) walk_loops(edges, outgoing, i, loops);
-  return loops;
+    if (!edges[i].used) result.open_edges += walk_loops(edges, incident, i, result.loops);
+  return result;
 }
 
 }  // namespace mr::hole_fill::detail

@@ -93,17 +93,46 @@ std::vector<Triangle> triangulate_with_islands(const HoleNeighbourhood& hole) {
   return faces;
 }
 
+std::optional<Mesh> as_mesh(const HoleNeighbourhood& hole, const std::vector<Triangle>& patch);
+
+// The named parameters of CGAL's hole triangulation for `triangulator`.
+auto triangulation_parameters(const HoleNeighbourhood& hole, Triangulator triangulator) {
+  return CGAL::parameters::use_delaunay_triangulation(triangulator != Triangulator::full_search)
+      .use_2d_constrained_delaunay_triangulation(triangulator == Triangulator::plane_2d)
+      .do_not_use_cubic_algorithm(triangulator != Triangulator::full_search && hole.loop_size > kCubicSearchMaxLoop);
+}
+
+// The loop triangulated as a hole of the ring's mesh, so that no diagonal
+// repeats an edge the surface already has (CGAL checks the mesh's edges);
+// nothing when the ring is not a valid polygon mesh or the loop's first
+// edge is not on its border.
+std::optional<std::vector<Triangle>> triangulate_in_ring(const HoleNeighbourhood& hole, Triangulator triangulator) {
+  std::optional<Mesh> ring = as_mesh(hole, {});
+  if (!ring) return std::nullopt;
+  const auto h = CGAL::halfedge(Mesh::Vertex_index(0), Mesh::Vertex_index(1), *ring);
+  if (!h.second || !ring->is_border(h.first)) return std::nullopt;
+  std::vector<Mesh::Face_index> added;
+  PMP::triangulate_hole(*ring, h.first, std::back_inserter(added), triangulation_parameters(hole, triangulator));
+  std::vector<Triangle> faces;
+  for (Mesh::Face_index f : added) {
+    Triangle t{};
+    int k = 0;
+    for (Mesh::Vertex_index v : CGAL::vertices_around_face(ring->halfedge(f), *ring)) t[k++] = Index(std::size_t(v));
+    faces.push_back(t);
+  }
+  return faces;
+}
+
 std::vector<Triangle> triangulate_loop(const HoleNeighbourhood& hole, Triangulator triangulator) {
+  if (std::optional<std::vector<Triangle>> in_ring = triangulate_in_ring(hole, triangulator); in_ring && !in_ring->empty())
+    return *in_ring;
   std::vector<Point> points, third;
   for (std::size_t i = 0; i < hole.loop_size; ++i) {
     points.push_back(to_point(hole.positions[i]));
     third.push_back(to_point(hole.opposite[i]));
   }
   std::vector<LoopFace> faces;
-  PMP::triangulate_hole_polyline(
-      points, third, std::back_inserter(faces),
-      CGAL::parameters::use_delaunay_triangulation(triangulator != Triangulator::full_search)
-          .use_2d_constrained_delaunay_triangulation(triangulator == Triangulator::plane_2d));
+  PMP::triangulate_hole_polyline(points, third, std::back_inserter(faces), triangulation_parameters(hole, triangulator));
   std::vector<Triangle> out;
   for (const LoopFace& f : faces) out.push_back(f.corners);
   return out;

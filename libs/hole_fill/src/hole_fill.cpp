@@ -40,9 +40,6 @@ using detail::HoleNeighbourhood;
 using detail::PatchMethod;
 using detail::Triangulator;
 
-// The full search is cubic in the loop's length: beyond this it is not tried.
-constexpr std::size_t kFullSearchMaxLoop = 400;
-
 using VertexFaces = std::vector<std::vector<std::uint32_t>>;
 
 VertexFaces faces_around_vertices(const TriangleSoup& soup) {
@@ -118,7 +115,7 @@ std::vector<PatchMethod> methods_to_try(const HoleFillOptions& o, const Hole& ho
   };
   std::vector<PatchMethod> out;
   for (const PatchMethod& m : all) {
-    if (m.triangulator == Triangulator::full_search && loop_size > kFullSearchMaxLoop) continue;
+    if (m.triangulator == Triangulator::full_search && loop_size > detail::kCubicSearchMaxLoop) continue;
     const bool seen = std::any_of(out.begin(), out.end(), [&](const PatchMethod& n) {
       return n.triangulator == m.triangulator && n.refine == m.refine && (!m.refine || n.fairing == m.fairing);
     });
@@ -179,9 +176,13 @@ void fill_one(HoleWork& work, detail::FilledSurface& surface, const HoleFillOpti
     std::optional<detail::Patch> patch =
         m == 0 ? std::move(work.first) : detail::make_patch(work.local.hole, work.methods[m]);
     ++work.report.attempts;
-    if (!patch) continue;
+    if (!patch) {
+      work.report.why = "no triangulation found";
+      continue;
+    }
     const GlobalPatch global = to_global(*patch, work.local, Index(surface.num_vertices()), o.grid);
-    if (!surface.refusal(global).empty()) continue;
+    work.report.why = surface.refusal(global);
+    if (!work.report.why.empty()) continue;
     surface.add(global);
     work.report.outcome = HoleOutcome::filled;
     work.report.method = method_name(work.methods[m]);
@@ -220,13 +221,15 @@ HoleFillResult fill_holes(const TriangleSoup& input, const HoleFillOptions& opti
   const TriangleSoup welded = weld_identical_vertices(input);
   const VertexFaces around = faces_around_vertices(welded);
   std::vector<HoleWork> work;
-  for (Hole& hole : detail::group_islands(welded, detail::find_border_loops(welded)))
+  detail::BorderLoops border = detail::find_border_loops(welded);
+  for (Hole& hole : detail::group_islands(welded, std::move(border.loops)))
     work.push_back(make_work(welded, std::move(hole), options));
   tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
     if (work[i].report.outcome == HoleOutcome::failed) prepare(work[i], welded, around, options);
   });
   HoleFillResult result;
   result.input_faces = welded.triangles.size();
+  result.open_border_edges = border.open_edges;
   detail::FilledSurface surface(welded);
   // Accepted in order; a hole with islands that no patch fills is retried
   // as separate loops, appended to the work.

@@ -17,6 +17,10 @@ namespace mr::hole_fill::detail {
 /// loop's best-fitting plane (near-planar loops).
 enum class Triangulator { delaunay_3d, full_search, plane_2d };
 
+/// The full search is cubic in the loop's length: past this length it is
+/// neither a method nor the Delaunay search's fallback (minutes, not seconds).
+constexpr std::size_t kCubicSearchMaxLoop = 400;
+
 struct PatchMethod {
   Triangulator triangulator = Triangulator::delaunay_3d;
   bool refine = true;

@@ -1,13 +1,14 @@
 #pragma once
-// Merging of vertices with bit-identical coordinates (soups read from STL,
-// or written with duplicated vertices, are often not welded).
+// Merging of vertices with identical coordinates (soups read from STL, or
+// written with duplicated vertices, are often not welded).
 
 #include <mr/core/triangle_soup.h>
 
 namespace mr {
 
-/// Positions and triangles of `soup` with bit-identical vertices merged; each
-/// vertex keeps the index of its first occurrence order. Attributes are dropped.
+/// Positions and triangles of `soup` with vertices of equal coordinates
+/// merged (bit-identical, except that -0 and +0 are one); each vertex keeps
+/// the index of its first occurrence order. Attributes are dropped.
 TriangleSoup weld_identical_vertices(const TriangleSoup& soup);
 
 }  // namespace mr

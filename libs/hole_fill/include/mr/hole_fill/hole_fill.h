@@ -51,6 +51,7 @@ struct HoleReport {
   double diameter = 0.0;
   HoleOutcome outcome = HoleOutcome::failed;
   std::string method;             ///< the method whose patch was accepted
+  std::string why;                ///< failed: why the last patch tried was refused
   std::size_t attempts = 0;       ///< patches tried
   std::size_t patch_faces = 0;
   std::size_t patch_vertices = 0; ///< new vertices inside the patch
@@ -62,14 +63,17 @@ struct HoleFillResult {
   /// patch faces; input faces keep their order, vertices and positions.
   TriangleSoup surface;
   std::size_t input_faces = 0;  ///< the first input_faces faces of surface are the input's
+  /// Border edges on no loop (a path of border edges that cannot close:
+  /// it ends where an edge of three or more faces meets the border).
+  std::size_t open_border_edges = 0;
   std::vector<HoleReport> holes;
 
   std::size_t filled() const;
 };
 
 /// Fills the holes of `input`. Loops are found on the input welded by
-/// identical positions; a loop that passes a vertex twice (a pinched
-/// boundary) is split into simple loops. Holes are filled in parallel (TBB)
+/// identical positions (-0 and +0 alike); a loop that passes a vertex twice
+/// (a pinched boundary) is split into simple loops. Holes are filled in parallel (TBB)
 /// and accepted in a fixed order, so the result does not depend on the
 /// thread count. Attributes are dropped.
 HoleFillResult fill_holes(const TriangleSoup& input, const HoleFillOptions& options = {});
