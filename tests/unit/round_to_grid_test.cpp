@@ -1,6 +1,7 @@
 // Output precision: the coordinate grids formats store positions on, the
 // repair's rounding onto them, and meshrepair's promise on the written file.
 
+#include "mesh_generators.h"
 #include "test_support.h"
 
 #include <mr/check/surface_check.h>
@@ -120,13 +121,43 @@ TEST_CASE("rounding to a coarse Draco grid keeps nearly touching cubes apart", "
 }
 
 TEST_CASE("rounding refuses to place vertices it cannot keep apart", "[grid][repair]") {
-  // Steps of a quarter of the cube: with no search, the cubes 1e-3 apart must meet.
-  const TriangleSoup input = cubes_apart_by(1e-3, Vec3d::Zero());
+  // Two tetrahedra facing each other 1e-3 apart, on steps of about 0.4: with no
+  // search the facing sides meet, and no edge of a tetrahedron can be collapsed.
+  TriangleSoup input;
+  input.positions = {{0.1, 0, 0},   {0.1, 1, 0},   {0.1, 0, 1},   {-0.9, 0, 0},
+                     {0.101, 0, 0}, {0.101, 1, 0}, {0.101, 0, 1}, {1.101, 0, 0}};
+  input.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {4, 5, 6}, {4, 7, 5}, {4, 6, 7}, {5, 7, 6}};
+  REQUIRE(check::check_surface(input).self_intersecting_pairs == 0);
   const CoordinateGrid grid = CoordinateGrid::quantized_over(Vec3d::Constant(-3.0), Vec3d::Constant(3.0), 5);
+  REQUIRE(grid.nearest(input.positions[0]) == grid.nearest(input.positions[4]));
   TriangleSoup rounded = input;
   repair::GridRoundingOptions no_search;
   no_search.max_steps = 0;
   REQUIRE_THROWS_AS(repair::round_to_grid(rounded, grid, no_search), RunError);
+}
+
+TEST_CASE("a vertex no grid point works for is collapsed onto a placed neighbour", "[grid][repair]") {
+  // Vertex v 1e-9 from its neighbour u: both round to one float32 point, and
+  // with no search around the nearest point v has nowhere to go.
+  TriangleSoup input = test::sphere(1.0, 2);
+  for (Vec3d& p : input.positions) p += Vec3d(10.0, 10.0, 10.0);  // float32 steps near 1e-6
+  const Triangle first = input.triangles[0];
+  const Index u = first[0], v = first[1];
+  input.positions[v] = input.positions[u] + 1e-9 * (input.positions[v] - input.positions[u]).normalized();
+  REQUIRE(check::check_surface(input).watertight());
+  const CoordinateGrid grid = CoordinateGrid::float32();
+  REQUIRE(grid.nearest(input.positions[u]) == grid.nearest(input.positions[v]));
+  TriangleSoup rounded = input;
+  repair::GridRoundingOptions no_search;
+  no_search.max_steps = 0;
+  const repair::GridRoundingStats stats = repair::round_to_grid(rounded, grid, no_search);
+  REQUIRE(stats.collapsed == 1);
+  REQUIRE(rounded.positions.size() == input.positions.size() - 1);
+  REQUIRE(rounded.triangles.size() == input.triangles.size() - 2);
+  REQUIRE(all_on(rounded, grid));
+  const check::SurfaceReport r = check::check_surface(rounded);
+  CAPTURE(check::watertight_failures(r));
+  REQUIRE(r.watertight());
 }
 
 TEST_CASE("writers store positions exactly on the grid they announce", "[grid][io]") {

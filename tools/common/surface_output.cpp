@@ -3,7 +3,15 @@
 #include <mr/check/surface_check.h>
 #include <mr/io/mesh_io.h>
 
+#include <cstdint>
+
 namespace mr::tools {
+
+int draco_position_bits_for(double extent, double epsilon) {
+  for (int bits = 12; bits < 30; ++bits)
+    if (extent / double((std::int64_t{1} << bits) - 1) <= epsilon / 64.0) return bits;
+  return 30;
+}
 
 SurfaceWrite write_surface_keeping_watertight(const io::Registry& registry, TriangleSoup surface,
                                               const std::string& path, io::WriteOptions options) {

@@ -9,6 +9,11 @@
 
 namespace mr::tools {
 
+/// The fewest Draco position bits (at least 12, at most 30) whose grid step
+/// over `extent` is at most epsilon / 64: rounding then moves a surface by
+/// far less than epsilon.
+int draco_position_bits_for(double extent, double epsilon);
+
 struct SurfaceWrite {
   bool watertight = false;  ///< watertight in doubles, hence rounded and checked as written
   repair::GridRoundingStats rounding;

@@ -105,14 +105,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// The fewest Draco position bits (at least 12) whose grid step over `extent`
-// is at most epsilon / 64: rounding then moves the surface by far less than epsilon.
-int position_bits_for(double extent, double epsilon) {
-  for (int bits = 12; bits < 30; ++bits)
-    if (extent / double((std::int64_t{1} << bits) - 1) <= epsilon / 64.0) return bits;
-  return 30;
-}
-
 // The grid the output file stores positions on, for a surface inside [lo, hi];
 // Draco's quantization is fixed here, and the writer is told to use it.
 std::function<CoordinateGrid(const Vec3d&, const Vec3d&)> output_grid(const io::Registry& registry,
@@ -120,7 +112,7 @@ std::function<CoordinateGrid(const Vec3d&, const Vec3d&)> output_grid(const io::
                                                                      const ToolOptions& options,
                                                                      io::WriteOptions& write) {
   return [&registry, path, epsilon, &options, &write](const Vec3d& lo, const Vec3d& hi) {
-    write.draco.position_bits = options.draco_position_bits.value_or(position_bits_for((hi - lo).maxCoeff(), epsilon));
+    write.draco.position_bits = options.draco_position_bits.value_or(draco_position_bits_for((hi - lo).maxCoeff(), epsilon));
     CoordinateGrid grid = io::surface_position_grid(registry, path, write, lo, hi);
     if (grid.kind() == CoordinateGrid::Kind::quantized) write.draco.position_grid = grid.quantization();
     return grid;

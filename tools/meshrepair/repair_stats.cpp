@@ -80,6 +80,7 @@ nlohmann::json repair_figures(const repair::RepairResult& r) {
           {"output_grid", r.grid.name()},
           {"rounded_vertices", r.rounding.moved},
           {"rounded_off_nearest", r.rounding.nearest_refused},
+          {"rounding_collapsed", r.rounding.collapsed},
           {"rounding_passes", r.rounding.passes},
           {"rounding_max_move", r.rounding.max_move}};
 }

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <iterator>
 #include <limits>
 #include <span>
 #include <cmath>
@@ -44,22 +45,13 @@ struct PositionEqual {
   bool operator()(const Vec3d& a, const Vec3d& b) const { return a == b; }
 };
 
-// Vertex-to-face incidence in one array (faces of v: faces[first[v] .. first[v + 1])).
-struct Incidence {
-  std::vector<std::size_t> first;
-  std::vector<Index> faces;
-};
+// Faces around each vertex (mutable: a collapse moves faces to another vertex).
+using Incidence = std::vector<std::vector<Index>>;
 
 Incidence incidence_of(const TriangleSoup& surface) {
-  Incidence incidence;
-  incidence.first.assign(surface.positions.size() + 1, 0);
-  for (const Triangle& t : surface.triangles)
-    for (Index v : t) ++incidence.first[v + 1];
-  for (std::size_t v = 0; v < surface.positions.size(); ++v) incidence.first[v + 1] += incidence.first[v];
-  incidence.faces.resize(incidence.first.back());
-  std::vector<std::size_t> next(incidence.first.begin(), incidence.first.end() - 1);
+  Incidence incidence(surface.positions.size());
   for (std::size_t f = 0; f < surface.triangles.size(); ++f)
-    for (Index v : surface.triangles[f]) incidence.faces[next[v]++] = static_cast<Index>(f);
+    for (Index v : surface.triangles[f]) incidence[v].push_back(static_cast<Index>(f));
   return incidence;
 }
 
@@ -67,7 +59,8 @@ class GridRounding {
  public:
   GridRounding(TriangleSoup& surface, const CoordinateGrid& grid, const GridRoundingOptions& options)
       : surface_(surface), grid_(grid), options_(options), original_(surface.positions),
-        incidence_(incidence_of(surface)), on_grid_(surface.positions.size(), 0) {
+        incidence_(incidence_of(surface)), on_grid_(surface.positions.size(), 0),
+        collapsed_(surface.positions.size(), 0), removed_(surface.triangles.size(), 0) {
     for (std::size_t v = 0; v < original_.size(); ++v) occupied_.emplace(original_[v], static_cast<Index>(v));
     build_reach();
   }
@@ -80,15 +73,23 @@ class GridRounding {
       else ++stats.moved;
     }
     std::vector<Index> left = unplaced();
-    // First sweep: the nearest grid point only, so that a vertex refused
-    // because a neighbour has not moved yet is tried again after it did.
-    for (bool search = false; !left.empty() && stats.passes < options_.max_passes; search = true) {
-      ++stats.passes;
-      for (Index v : left) place(v, search, stats);
-      const std::vector<Index> still = unplaced();
-      if (search && still.size() == left.size()) break;
-      left = still;
+    // Where no grid point around a vertex works (sheets closer than a grid
+    // step all around it), the vertex goes: collapsed onto a neighbour,
+    // which is then placed (again) with the others left.
+    for (int round = 0; !left.empty() && round < kCollapseRounds; ++round) {
+      left = place_all(left, round > 0, stats);
+      bool changed = false;
+      for (Index v : left)
+        if (!on_grid_[v] && release_neighbours(v)) {
+          changed = true;
+          place(v, true, stats);  // first, while its neighbours are back where they were
+        }
+      for (Index v : left)
+        if (!on_grid_[v] && collapse_onto_neighbour(v)) ++stats.collapsed, changed = true;
+      if (!changed) break;
+      left = unplaced();
     }
+    if (stats.collapsed > 0) remove_collapsed();
     if (!left.empty())
       throw RunError("cannot place " + std::to_string(left.size()) + " vertices on the " + grid_.name() +
                      " grid of the output without a self-intersection, a degenerate face or two vertices on "
@@ -98,11 +99,159 @@ class GridRounding {
   }
 
  private:
+  static constexpr int kCollapseRounds = 8;
+
+  // Sweeps over `left` until every vertex is placed, a searching sweep
+  // places none, or the passes run out; the first sweep of a run tries the
+  // nearest grid point only, so that a vertex refused because a neighbour
+  // has not moved yet is tried again after it did. Returns the unplaced.
+  std::vector<Index> place_all(std::vector<Index> left, bool search, GridRoundingStats& stats) {
+    for (int pass = 0; !left.empty() && pass < options_.max_passes; ++pass, search = true) {
+      ++stats.passes;
+      for (Index v : left) place(v, search, stats);
+      const std::vector<Index> still = unplaced();
+      if (search && still.size() == left.size()) return still;
+      left = still;
+    }
+    return left;
+  }
+
   std::vector<Index> unplaced() const {
     std::vector<Index> out;
     for (std::size_t v = 0; v < on_grid_.size(); ++v)
       if (!on_grid_[v]) out.push_back(static_cast<Index>(v));
     return out;
+  }
+
+  // Moves v's placed neighbours back to their original positions where that
+  // keeps the surface valid and marks them unplaced, so that v is placed
+  // before them (they were rounded first and left v no room). True if any moved.
+  bool release_neighbours(Index v) {
+    bool any = false;
+    for (Index w : neighbours(v)) {
+      if (!on_grid_[w] || grid_.holds(original_[w]) || collapsed_[w]) continue;
+      if (try_position(w, original_[w], faces_near(w))) {
+        on_grid_[w] = 0;
+        any = true;
+      }
+    }
+    return any;
+  }
+
+  // The vertices sharing a face with v, sorted, without v.
+  std::vector<Index> neighbours(Index v) const {
+    std::vector<Index> out;
+    for (Index f : faces_around(v))
+      for (Index w : surface_.triangles[f])
+        if (w != v) out.push_back(w);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+  // Collapses the edge v-w into w's (grid) position if the surface stays a
+  // valid one, exactly: the link condition (v and w share no neighbour but
+  // the two faces on their edge), no face degenerate, repeated or meeting
+  // another improperly. Tries the neighbours nearest to v first; one not
+  // yet on the grid is placed afterwards.
+  bool collapse_onto_neighbour(Index v) {
+    std::vector<Index> candidates = neighbours(v);
+    std::stable_sort(candidates.begin(), candidates.end(), [&](Index a, Index b) {
+      return (surface_.positions[a] - original_[v]).squaredNorm() < (surface_.positions[b] - original_[v]).squaredNorm();
+    });
+    for (Index w : candidates)
+      if (try_collapse(v, w)) return true;
+    return false;
+  }
+
+  bool try_collapse(Index v, Index w) {
+    std::vector<Index> shared, kept;  // faces on edge v-w, the other faces of v
+    for (Index f : faces_around(v)) {
+      const Triangle& t = surface_.triangles[f];
+      (std::find(t.begin(), t.end(), w) != t.end() ? shared : kept).push_back(f);
+    }
+    if (shared.size() != 2) return false;
+    std::vector<Index> common, nv = neighbours(v), nw = neighbours(w);
+    std::set_intersection(nv.begin(), nv.end(), nw.begin(), nw.end(), std::back_inserter(common));
+    if (common.size() != 2) return false;  // the link condition
+    std::vector<std::array<Vec3d, 3>> moved;
+    for (Index f : kept) {
+      moved.push_back(corners(f, v, surface_.positions[w]));
+      const auto& m = moved.back();
+      if (collinear(m[0], m[1], m[2])) return false;
+    }
+    // Faces near the collapse: near v or w, minus those that go or move.
+    std::vector<Index> nearby = faces_near(v);
+    for (Index g : faces_around(w))
+      if (std::find(shared.begin(), shared.end(), g) == shared.end()) nearby.push_back(g);
+    std::sort(nearby.begin(), nearby.end());
+    nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
+    const auto improper = [](const std::array<Vec3d, 3>& a, const std::array<Vec3d, 3>& b) {
+      return intersect_triangles(a[0], a[1], a[2], b[0], b[1], b[2]).improper();
+    };
+    for (std::size_t i = 0; i < moved.size(); ++i) {
+      for (std::size_t j = i + 1; j < moved.size(); ++j)
+        if (improper(moved[i], moved[j])) return false;
+      for (Index g : nearby) {
+        if (removed_[g] || std::find(shared.begin(), shared.end(), g) != shared.end()) continue;
+        const Triangle& t = surface_.triangles[g];
+        const std::array<Vec3d, 3> other{surface_.positions[t[0]], surface_.positions[t[1]], surface_.positions[t[2]]};
+        if (improper(moved[i], other)) return false;
+      }
+    }
+    apply_collapse(v, w, shared, kept);
+    return true;
+  }
+
+  void apply_collapse(Index v, Index w, const std::vector<Index>& shared, const std::vector<Index>& kept) {
+    for (Index f : shared) {
+      removed_[f] = 1;
+      faces_.erase(f);
+      for (Index u : surface_.triangles[f])
+        if (u != v) std::erase(incidence_[u], f);
+    }
+    for (Index f : kept) {
+      for (Index& u : surface_.triangles[f])
+        if (u == v) u = w;
+      incidence_[w].push_back(f);
+      face_reach_[f] = Box();
+      for (Index u : surface_.triangles[f]) face_reach_[f].add(vertex_reach_[u]);
+      faces_.insert(f, face_reach_[f].lo, face_reach_[f].hi);
+    }
+    incidence_[v].clear();
+    if (auto it = occupied_.find(surface_.positions[v]); it != occupied_.end() && it->second == v) occupied_.erase(it);
+    on_grid_[v] = 1;
+    collapsed_[v] = 1;
+  }
+
+  // Drops the faces and vertices the collapses removed (attributes follow).
+  void remove_collapsed() {
+    std::vector<Triangle> faces;
+    for (std::size_t f = 0; f < surface_.triangles.size(); ++f)
+      if (!removed_[f]) faces.push_back(surface_.triangles[f]);
+    std::vector<Index> remap(surface_.positions.size());
+    Index next = 0;
+    for (std::size_t v = 0; v < remap.size(); ++v) remap[v] = collapsed_[v] ? 0 : next++;
+    const auto compact = [&](auto& values) {
+      if (values.empty()) return;
+      std::size_t out = 0;
+      for (std::size_t v = 0; v < values.size(); ++v)
+        if (!collapsed_[v]) values[out++] = values[v];
+      values.resize(out);
+    };
+    compact(surface_.positions);
+    compact(surface_.normals);
+    compact(surface_.uvs);
+    compact(surface_.colors);
+    for (Triangle& t : faces)
+      for (Index& u : t) u = remap[u];
+    surface_.triangles = std::move(faces);
+    if (!surface_.face_regions.empty()) {
+      std::vector<std::int32_t> regions;
+      for (std::size_t f = 0; f < removed_.size(); ++f)
+        if (!removed_[f]) regions.push_back(surface_.face_regions[f]);
+      surface_.face_regions = std::move(regions);
+    }
   }
 
   // Every box a vertex can be in during the stage (its position and the grid
@@ -136,9 +285,7 @@ class GridRounding {
       faces_.insert(static_cast<std::uint32_t>(f), face_reach_[f].lo, face_reach_[f].hi);
   }
 
-  std::span<const Index> faces_around(Index v) const {
-    return {incidence_.faces.data() + incidence_.first[v], incidence_.first[v + 1] - incidence_.first[v]};
-  }
+  std::span<const Index> faces_around(Index v) const { return incidence_[v]; }
 
   // The nearest grid point; when searching, the points around it, in
   // widening lattices (every step, then every 4th, 16th, ...) so that a
@@ -229,6 +376,7 @@ class GridRounding {
       Box box_i;
       for (const Vec3d& p : moved[i]) box_i.add(p);
       for (Index g : nearby) {
+        if (removed_[g]) continue;
         const std::array<Vec3d, 3> other = corners(g, v, c);
         Box box_g;
         for (const Vec3d& p : other) box_g.add(p);
@@ -252,6 +400,8 @@ class GridRounding {
   std::vector<Vec3d> original_;
   Incidence incidence_;
   std::vector<std::uint8_t> on_grid_;
+  std::vector<std::uint8_t> collapsed_;  ///< per vertex: collapsed away
+  std::vector<std::uint8_t> removed_;    ///< per face: removed by a collapse
   std::unordered_map<Vec3d, Index, PositionHash, PositionEqual> occupied_;
   std::vector<Box> vertex_reach_;
   std::vector<Box> face_reach_;

@@ -7,7 +7,9 @@
 // (which a reader welds into a non-manifold vertex). Here each vertex moves
 // to the nearest grid point where none of that happens, decided exactly on
 // the rounded coordinates; where the nearest is refused, the grid points
-// around it are tried, nearest first, on widening lattices.
+// around it are tried, nearest first, on widening lattices; where none
+// works (sheets closer than a grid step all around it), the vertex is
+// collapsed onto a placed neighbour, if that keeps the surface valid.
 
 #include <mr/core/coordinate_grid.h>
 #include <mr/core/triangle_soup.h>
@@ -31,6 +33,7 @@ struct GridRoundingStats {
   std::size_t vertices = 0;
   std::size_t moved = 0;            ///< vertices that were not on the grid
   std::size_t nearest_refused = 0;  ///< vertices placed on a grid point other than the nearest
+  std::size_t collapsed = 0;        ///< vertices no grid point worked for, collapsed onto a neighbour
   int passes = 0;
   double max_move = 0.0;            ///< largest distance a vertex moved
 };
@@ -41,9 +44,12 @@ struct GridRoundingStats {
 /// this still holds afterwards, exactly, on the grid coordinates: a vertex
 /// goes to the nearest grid point where none of its faces becomes degenerate
 /// or meets another face improperly and no other vertex sits, else to the
-/// nearest such grid point of the search (GridRoundingOptions). Vertices are
-/// placed in index order, so the result is deterministic. Throws mr::RunError
-/// naming the count of vertices that found no place.
+/// nearest such grid point of the search (GridRoundingOptions), else it is
+/// collapsed onto the nearest placed neighbour for which the link condition
+/// holds and no face becomes degenerate or meets another improperly (its
+/// faces on that edge go; the surface is compacted, attributes follow).
+/// Vertices are placed in index order, so the result is deterministic.
+/// Throws mr::RunError naming the count of vertices that found no place.
 GridRoundingStats round_to_grid(TriangleSoup& surface, const CoordinateGrid& grid,
                                 const GridRoundingOptions& options = {});
 
