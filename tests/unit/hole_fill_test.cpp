@@ -239,3 +239,27 @@ TEST_CASE("meshrepair fills the holes of an input that lacks nothing else and ke
   REQUIRE(remeshed["path"] == "tetrahedralize");
   REQUIRE(remeshed["hole_fill_declined"] == "--remesh");
 }
+
+TEST_CASE("a watertight result is written on a finer Draco grid when the chosen one leaves no room",
+          "[hole_fill][grid][e2e]") {
+  // Two boxes 1e-6 apart and a flat tetrahedron in the gap: on the Draco grid chosen from
+  // the size (steps near 1.5e-5) no grid level lies between the boxes, so the tetrahedron has
+  // no place wherever its vertices are searched for, and it cannot be collapsed.
+  TriangleSoup input = test::cube_soup();
+  for (Vec3d& p : input.positions) p.z() *= 0.5;
+  TriangleSoup upper = test::cube_soup();
+  for (Vec3d& p : upper.positions) p.z() = 0.5 + 1e-6 + 0.5 * p.z();
+  input.append(upper);
+  TriangleSoup tet;
+  tet.positions = {{0.4, 0.4, 0.5 + 2e-7}, {0.6, 0.4, 0.5 + 2e-7}, {0.5, 0.6, 0.5 + 2e-7}, {0.5, 0.5, 0.5 + 8e-7}};
+  tet.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  input.append(tet);
+  require_watertight(input);
+  const test::TempDir dir("hole_fill_draco");
+  const io::Registry registry = io::make_default_registry();
+  io::write_surface(registry, input, dir / "in.obj");
+  const test::ToolRun run = test::run_tool(tools::hole_fill, {(dir / "in.obj").string(), (dir / "out.drc").string()});
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+  require_watertight(io::read_surface(registry, dir / "out.drc"));
+}

@@ -24,8 +24,11 @@ struct SurfaceWrite {
 /// the grid the format stores (repair::round_to_grid, Draco's grid fixed
 /// here) and the file is read back and checked before it is renamed into
 /// place (mr::RunError if it is not watertight); any other surface (open,
-/// pinched, inward) is written as it is.
+/// pinched, inward) is written as it is. Where no place on a Draco grid is
+/// left for some vertex, the grid gets two more bits (up to 30) unless
+/// `finer_draco_grid` is false (the user chose the bits).
 SurfaceWrite write_surface_keeping_watertight(const io::Registry& registry, TriangleSoup surface,
-                                              const std::string& path, io::WriteOptions options);
+                                              const std::string& path, io::WriteOptions options,
+                                              bool finer_draco_grid = true);
 
 }  // namespace mr::tools

@@ -119,6 +119,23 @@ std::function<CoordinateGrid(const Vec3d&, const Vec3d&)> output_grid(const io::
   };
 }
 
+// Two more Draco bits when no place on the grid is left for some vertex, if
+// meshrepair chose the bits (not --draco-position-bits), up to 30.
+std::function<std::optional<CoordinateGrid>(const Vec3d&, const Vec3d&, const CoordinateGrid&)> finer_output_grid(
+    const io::Registry& registry, const std::string& path, const ToolOptions& options, io::WriteOptions& write) {
+  return [&registry, path, &options, &write](const Vec3d& lo, const Vec3d& hi,
+                                             const CoordinateGrid& refused) -> std::optional<CoordinateGrid> {
+    if (refused.kind() != CoordinateGrid::Kind::quantized || options.draco_position_bits ||
+        refused.quantization().bits >= 30)
+      return std::nullopt;
+    write.draco.position_bits = std::min(30, refused.quantization().bits + 2);
+    write.draco.position_grid.reset();
+    const CoordinateGrid grid = io::surface_position_grid(registry, path, write, lo, hi);
+    write.draco.position_grid = grid.quantization();
+    return grid;
+  };
+}
+
 // The envelope radius the pipeline would use for `input`.
 double epsilon_for(const TriangleSoup& input, const tetmesh::TetrahedralizeOptions& t) {
   return t.epsilon_abs > 0.0 ? t.epsilon_abs : t.epsilon_rel * bounding_box_diagonal(input);
@@ -148,7 +165,8 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry, co
   if (!holes.fill) return false;
   const double seconds_fill = seconds_since(start);
   start = std::chrono::steady_clock::now();
-  const SurfaceWrite written = write_surface_keeping_watertight(registry, holes.fill->surface, files[1], write_options);
+  const SurfaceWrite written = write_surface_keeping_watertight(registry, holes.fill->surface, files[1], write_options,
+                                                               !options.draco_position_bits);
   const double seconds_write = seconds_since(start) - written.written.seconds;
   if (!options.stats_path.empty())
     cli::write_stats_file(options.stats_path,
@@ -183,6 +201,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   repair_options.cleanup = options.cleanup;
   io::WriteOptions write_options = options.write;
   repair_options.output_grid = output_grid(registry, files[1], pipeline.parameters.epsilon, options, write_options);
+  repair_options.finer_output_grid = finer_output_grid(registry, files[1], options, write_options);
   std::vector<std::uint8_t> inside(pipeline.mesh.tet_labels.begin(), pipeline.mesh.tet_labels.end());
   const repair::RepairResult repaired = repair::repair_surface_from_tets(pipeline.mesh, inside, input, repair_options);
   if (options.verbose && !options.quiet) {

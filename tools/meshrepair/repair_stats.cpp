@@ -81,6 +81,7 @@ nlohmann::json repair_figures(const repair::RepairResult& r) {
           {"rounded_vertices", r.rounding.moved},
           {"rounded_off_nearest", r.rounding.nearest_refused},
           {"rounding_collapsed", r.rounding.collapsed},
+          {"finer_output_grids", r.finer_grids},
           {"rounding_passes", r.rounding.passes},
           {"rounding_max_move", r.rounding.max_move}};
 }

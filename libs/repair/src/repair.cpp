@@ -122,7 +122,20 @@ RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::
     StageClock clock(result, "round");
     const auto [lo, hi] = bounds_of(result.surface);
     result.grid = options.output_grid(lo, hi);
-    result.rounding = round_to_grid(result.surface, result.grid, options.rounding);
+    const TriangleSoup unrounded = result.surface;
+    while (true) {
+      try {
+        result.rounding = round_to_grid(result.surface, result.grid, options.rounding);
+        break;
+      } catch (const RunError&) {
+        std::optional<CoordinateGrid> finer;
+        if (options.finer_output_grid) finer = options.finer_output_grid(lo, hi, result.grid);
+        if (!finer) throw;
+        result.surface = unrounded;
+        result.grid = *finer;
+        ++result.finer_grids;
+      }
+    }
   }
   if (!detail::find_boundary_defects(result.surface.triangles).closed_manifold())
     throw RunError("repair: internal error: the repaired surface is not a closed manifold");

@@ -15,6 +15,8 @@
 #include <mr/repair/manifold_fix.h>
 #include <mr/repair/round_to_grid.h>
 
+#include <optional>
+
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -35,6 +37,11 @@ struct RepairOptions {
   /// The grid the output file stores positions on, for a surface inside
   /// [lo, hi] (e.g. mr::io::surface_position_grid). Empty: doubles, no rounding.
   std::function<CoordinateGrid(const Vec3d& lo, const Vec3d& hi)> output_grid;
+  /// When no place on the output grid is left for some vertex, a finer grid
+  /// for the same box to round onto instead (more Draco bits), or nothing
+  /// (the repair then fails). Empty: nothing.
+  std::function<std::optional<CoordinateGrid>(const Vec3d& lo, const Vec3d& hi, const CoordinateGrid& refused)>
+      finer_output_grid;
   GridRoundingOptions rounding;
 };
 
@@ -54,6 +61,7 @@ struct RepairResult {
   /// The grid the surface's positions lie on (the writer must use it).
   CoordinateGrid grid = CoordinateGrid::doubles();
   GridRoundingStats rounding;
+  int finer_grids = 0;  ///< grids refused before `grid` (finer_output_grid)
   std::vector<StageTime> stages;  ///< "manifold", "peel", "cleanup", "round", in order
 };
 
