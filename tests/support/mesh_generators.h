@@ -30,13 +30,10 @@ TriangleSoup torus_grid(int nu, int nv, const Position& position) {
   return soup;
 }
 
-/// A sphere of radius `radius` about the origin: an octahedron subdivided
-/// `subdivisions` times (8 * 4^n faces), new points pushed onto the sphere.
-inline TriangleSoup sphere(double radius, int subdivisions) {
-  TriangleSoup soup;
-  soup.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  soup.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  for (int s = 0; s < subdivisions; ++s) {
+/// Splits every face of `soup` into four, new vertices at edge midpoints
+/// pushed onto the unit sphere, `levels` times.
+inline void subdivide_onto_unit_sphere(TriangleSoup& soup, int levels) {
+  for (int level = 0; level < levels; ++level) {
     std::map<std::pair<Index, Index>, Index> middle;
     auto mid = [&](Index a, Index b) {
       const auto key = std::minmax(a, b);
@@ -51,6 +48,15 @@ inline TriangleSoup sphere(double radius, int subdivisions) {
     }
     soup.triangles = std::move(finer);
   }
+}
+
+/// A sphere of radius `radius` about the origin: an octahedron subdivided
+/// `subdivisions` times (8 * 4^n faces), new points pushed onto the sphere.
+inline TriangleSoup sphere(double radius, int subdivisions) {
+  TriangleSoup soup;
+  soup.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  soup.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  subdivide_onto_unit_sphere(soup, subdivisions);
   for (Vec3d& p : soup.positions) p *= radius;
   return soup;
 }

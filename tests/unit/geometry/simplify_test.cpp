@@ -1,3 +1,4 @@
+#include "mesh_generators.h"
 #include "test_support.h"
 #include "simplify_in_envelope.h"
 
@@ -60,21 +61,7 @@ TriangleSoup icosphere(int levels) {
   s.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
                  {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
                  {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  for (int level = 0; level < levels; ++level) {
-    std::map<std::pair<Index, Index>, Index> midpoints;
-    auto midpoint = [&](Index a, Index b) {
-      const auto key = std::minmax(a, b);
-      const auto [it, inserted] = midpoints.try_emplace(key, Index(s.positions.size()));
-      if (inserted) s.positions.push_back((s.positions[a] + s.positions[b]).normalized());
-      return it->second;
-    };
-    std::vector<mr::Triangle> finer;
-    for (const auto& f : s.triangles) {
-      const Index ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
-      finer.insert(finer.end(), {{f[0], ab, ca}, {f[1], bc, ab}, {f[2], ca, bc}, {ab, bc, ca}});
-    }
-    s.triangles = std::move(finer);
-  }
+  mr::test::subdivide_onto_unit_sphere(s, levels);
   return s;
 }
 
