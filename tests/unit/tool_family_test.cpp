@@ -4,6 +4,7 @@
 
 #include "extract_boundary.h"
 #include "format_convert.h"
+#include "hole_fill_tool.h"
 #include "mesh_check.h"
 #include "meshrepair.h"
 #include "simplify_in_envelope.h"
@@ -36,6 +37,7 @@ const std::vector<Tool>& all_tools() {
                                        {"tetrahedralize", tools::tetrahedralize, "out.msh"},
                                        {"simplify-in-envelope", tools::simplify_in_envelope, "out.obj"},
                                        {"extract-boundary", tools::extract_boundary, "out.obj"},
+                                       {"hole-fill", tools::hole_fill, "out.obj"},
                                        {"mesh-check", tools::mesh_check, ""}};
   return tools;
 }
