@@ -1,5 +1,6 @@
 // hole-fill: every hole closed by a patch that meets the surface only along
 // its loop, every input face kept, on holes built in code.
+#include "file_checks.h"
 #include "mesh_generators.h"
 #include "test_support.h"
 
@@ -262,4 +263,25 @@ TEST_CASE("a watertight result is written on a finer Draco grid when the chosen 
   INFO(run.err);
   REQUIRE(run.exit_code == 0);
   require_watertight(io::read_surface(registry, dir / "out.drc"));
+}
+
+TEST_CASE("hole-fill writes the same bytes whatever the thread count", "[hole_fill][e2e]") {
+  // A cap and scattered small holes: many patches made in parallel.
+  TriangleSoup input = without_faces(test::sphere(1.0, 5), [](const Vec3d& c) {
+    return c.z() > 0.8 || std::sin(40.0 * c.x()) * std::sin(40.0 * c.y()) > 0.995;
+  });
+  const test::TempDir dir("hole_fill_threads");
+  const io::Registry registry = io::make_default_registry();
+  io::write_surface(registry, input, dir / "in.obj");
+  std::vector<std::string> outputs;
+  for (const char* threads : {"1", "2", "4"}) {
+    const std::string out = (dir / (std::string("out") + threads + ".obj")).string();
+    const test::ToolRun run = test::run_tool(tools::hole_fill, {(dir / "in.obj").string(), out, "-j", threads, "-q"});
+    INFO(run.err);
+    REQUIRE(run.exit_code == 0);
+    outputs.push_back(test::read_text(out));
+  }
+  REQUIRE(hole_fill::fill_holes(input).holes.size() > 10);
+  REQUIRE(outputs[0] == outputs[1]);
+  REQUIRE(outputs[0] == outputs[2]);
 }
