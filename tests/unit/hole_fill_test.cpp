@@ -144,6 +144,20 @@ TEST_CASE("a hole with an island is filled between the two loops, one part", "[h
     REQUIRE(std::abs(result.surface.positions[v].norm() - 1.0) < 0.02);
 }
 
+TEST_CASE("a band cut around a sphere is one hole whose far side is the island", "[hole_fill]") {
+  // The part below the band reaches far from the band's plane: still an island of it.
+  const TriangleSoup input =
+      without_faces(test::sphere(1.0, 5), [](const Vec3d& c) { return c.z() > -0.35 && c.z() < -0.2; });
+  REQUIRE(check::check_surface(input).components == 2);
+  const hole_fill::HoleFillResult result = hole_fill::fill_holes(input);
+  REQUIRE(result.holes.size() == 1);
+  REQUIRE(result.holes[0].islands == 1);
+  REQUIRE(result.holes[0].outcome == HoleOutcome::filled);
+  require_input_kept(input, result);
+  require_watertight(result.surface);
+  REQUIRE(check::check_surface(result.surface).components == 1);
+}
+
 TEST_CASE("two holes sharing a border vertex are split into two loops and both filled", "[hole_fill]") {
   TriangleSoup sphere = test::sphere(1.0, 3);
   // Two faces around vertex 0 that share no edge: the border pinches at vertex 0.

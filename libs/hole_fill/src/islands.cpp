@@ -59,7 +59,7 @@ bool is_island_of(const TriangleSoup& soup, const std::vector<Index>& part_verti
   const Vec3d normal = outer.plane.u.cross(outer.plane.v);
   for (Index v : part_vertices) {
     const Vec3d& p = soup.positions[v];
-    if (std::abs((p - outer.plane.origin).dot(normal)) > outer.extent / 4.0) return false;
+    if (std::abs((p - outer.plane.origin).dot(normal)) > outer.extent) return false;
     if (winding(outer.polygon, outer.plane.project(p)) != 1) return false;
   }
   return true;

@@ -19,8 +19,8 @@ struct Hole {
 /// The holes of `loops`, islands joined to the hole around them. A loop B
 /// is an island of loop A when B is the only loop of its connected part,
 /// that part is another than A's, and, seen along A's mean normal (Newell),
-/// every vertex of B's part lies inside A and near A's plane (within a
-/// quarter of A's extent) and B turns the other way round. Loops are
+/// every vertex of B's part lies inside A and near A's plane (within A's
+/// extent, the diagonal of its box) and B turns the other way round. Loops are
 /// otherwise holes of their own, in the order found.
 std::vector<Hole> group_islands(const TriangleSoup& welded, std::vector<BorderLoop> loops);
 
