@@ -3,10 +3,9 @@
 #include <mr/check/surface_check.h>
 #include <mr/io/mesh_io.h>
 
-#include <mr/core/errors.h>
-
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 
 namespace mr::tools {
 
@@ -16,37 +15,42 @@ int draco_position_bits_for(double extent, double epsilon) {
   return 30;
 }
 
+std::optional<CoordinateGrid> finer_draco_grid(const io::Registry& registry, const std::string& path,
+                                               io::WriteOptions& options, const Vec3d& lo, const Vec3d& hi,
+                                               const CoordinateGrid& refused) {
+  if (refused.kind() != CoordinateGrid::Kind::quantized || refused.quantization().bits >= 30) return std::nullopt;
+  options.draco.position_bits = std::min(30, refused.quantization().bits + 2);
+  options.draco.position_grid.reset();
+  const CoordinateGrid grid = io::surface_position_grid(registry, path, options, lo, hi);
+  options.draco.position_grid = grid.quantization();
+  return grid;
+}
+
+SurfaceWrite write_watertight_surface(const io::Registry& registry, TriangleSoup surface, const std::string& path,
+                                      io::WriteOptions options, bool finer_draco_grid) {
+  SurfaceWrite result;
+  result.watertight = true;
+  const Eigen::AlignedBox3d box = bounding_box(surface);
+  const CoordinateGrid grid = io::surface_position_grid(registry, path, options, box.min(), box.max());
+  if (grid.kind() == CoordinateGrid::Kind::quantized) options.draco.position_grid = grid.quantization();
+  repair::FinerGrid finer;
+  if (finer_draco_grid)
+    finer = [&](const CoordinateGrid& refused) {
+      return tools::finer_draco_grid(registry, path, options, box.min(), box.max(), refused);
+    };
+  result.rounding = repair::round_to_grid_or_finer(surface, grid, finer).stats;
+  io::write_surface(registry, surface, path, options, check::watertight_file_check(registry, path, &result.written));
+  return result;
+}
+
 SurfaceWrite write_surface_keeping_watertight(const io::Registry& registry, TriangleSoup surface,
                                               const std::string& path, io::WriteOptions options,
                                               bool finer_draco_grid) {
-  SurfaceWrite result;
-  result.watertight = !surface.triangles.empty() && check::check_surface(surface).watertight();
-  if (!result.watertight) {
+  if (surface.triangles.empty() || !check::check_surface(surface).watertight()) {
     io::write_surface(registry, surface, path, options);
-    return result;
+    return {};
   }
-  Vec3d lo = surface.positions.front(), hi = lo;
-  for (const Vec3d& p : surface.positions) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const TriangleSoup unrounded = surface;
-  while (true) {
-    const CoordinateGrid grid = io::surface_position_grid(registry, path, options, lo, hi);
-    const bool quantized = grid.kind() == CoordinateGrid::Kind::quantized;
-    if (quantized) options.draco.position_grid = grid.quantization();
-    try {
-      result.rounding = repair::round_to_grid(surface, grid);
-      break;
-    } catch (const RunError&) {
-      if (!quantized || !finer_draco_grid || grid.quantization().bits >= 30) throw;
-      options.draco.position_bits = std::min(30, grid.quantization().bits + 2);
-      options.draco.position_grid.reset();
-      surface = unrounded;
-    }
-  }
-  io::write_surface(registry, surface, path, options, check::watertight_file_check(registry, path, &result.written));
-  return result;
+  return write_watertight_surface(registry, std::move(surface), path, std::move(options), finer_draco_grid);
 }
 
 }  // namespace mr::tools

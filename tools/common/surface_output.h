@@ -5,6 +5,7 @@
 #include <mr/io/registry.h>
 #include <mr/repair/round_to_grid.h>
 
+#include <optional>
 #include <string>
 
 namespace mr::tools {
@@ -13,6 +14,13 @@ namespace mr::tools {
 /// over `extent` is at most epsilon / 64: rounding then moves a surface by
 /// far less than epsilon.
 int draco_position_bits_for(double extent, double epsilon);
+
+/// The Draco grid of two more bits (up to 30) than `refused`, for writing
+/// positions inside [lo, hi] to `path`; `options` are set to write on it.
+/// Nothing when `refused` is not a Draco grid or has 30 bits.
+std::optional<CoordinateGrid> finer_draco_grid(const io::Registry& registry, const std::string& path,
+                                               io::WriteOptions& options, const Vec3d& lo, const Vec3d& hi,
+                                               const CoordinateGrid& refused);
 
 struct SurfaceWrite {
   bool watertight = false;  ///< watertight in doubles, hence rounded and checked as written
@@ -30,5 +38,10 @@ struct SurfaceWrite {
 SurfaceWrite write_surface_keeping_watertight(const io::Registry& registry, TriangleSoup surface,
                                               const std::string& path, io::WriteOptions options,
                                               bool finer_draco_grid = true);
+
+/// The same for a surface the caller knows to be watertight in doubles
+/// (no check before rounding; the written file is still checked).
+SurfaceWrite write_watertight_surface(const io::Registry& registry, TriangleSoup surface, const std::string& path,
+                                      io::WriteOptions options, bool finer_draco_grid = true);
 
 }  // namespace mr::tools

@@ -84,11 +84,10 @@ FillRun run(ToolOptions o, const std::vector<std::string>& files) {
   r.input_faces = input.triangles.size();
   r.seconds_read = seconds_since(start);
   start = std::chrono::steady_clock::now();
-  Vec3d lo = input.positions.front(), hi = lo;
-  for (const Vec3d& p : input.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const Eigen::AlignedBox3d box = bounding_box(input);
   // Draco: a grid step of at most 1/64 of meshrepair's default epsilon (1e-3 of the diagonal).
-  o.write.draco.position_bits = draco_position_bits_for((hi - lo).maxCoeff(), 1e-3 * (hi - lo).norm());
-  o.fill.grid = io::surface_position_grid(registry, files[1], o.write, lo, hi);
+  o.write.draco.position_bits = draco_position_bits_for(box.sizes().maxCoeff(), 1e-3 * box.diagonal().norm());
+  o.fill.grid = io::surface_position_grid(registry, files[1], o.write, box.min(), box.max());
   r.result = hole_fill::fill_holes(input, o.fill);
   r.seconds_fill = seconds_since(start);
   start = std::chrono::steady_clock::now();

@@ -125,26 +125,14 @@ std::function<std::optional<CoordinateGrid>(const Vec3d&, const Vec3d&, const Co
     const io::Registry& registry, const std::string& path, const ToolOptions& options, io::WriteOptions& write) {
   return [&registry, path, &options, &write](const Vec3d& lo, const Vec3d& hi,
                                              const CoordinateGrid& refused) -> std::optional<CoordinateGrid> {
-    if (refused.kind() != CoordinateGrid::Kind::quantized || options.draco_position_bits ||
-        refused.quantization().bits >= 30)
-      return std::nullopt;
-    write.draco.position_bits = std::min(30, refused.quantization().bits + 2);
-    write.draco.position_grid.reset();
-    const CoordinateGrid grid = io::surface_position_grid(registry, path, write, lo, hi);
-    write.draco.position_grid = grid.quantization();
-    return grid;
+    if (options.draco_position_bits) return std::nullopt;
+    return finer_draco_grid(registry, path, write, lo, hi, refused);
   };
 }
 
 // The envelope radius the pipeline would use for `input`.
 double epsilon_for(const TriangleSoup& input, const tetmesh::TetrahedralizeOptions& t) {
   return t.epsilon_abs > 0.0 ? t.epsilon_abs : t.epsilon_rel * bounding_box_diagonal(input);
-}
-
-std::pair<Vec3d, Vec3d> bounds(const TriangleSoup& soup) {
-  Vec3d lo = soup.positions.front(), hi = lo;
-  for (const Vec3d& p : soup.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  return {lo, hi};
 }
 
 // The holes-only path: its holes filled, the input written back with the
@@ -157,16 +145,16 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry, co
   }
   auto start = std::chrono::steady_clock::now();
   io::WriteOptions write_options = options.write;
-  const auto [lo, hi] = bounds(input);
+  const Eigen::AlignedBox3d box = bounding_box(input);
   const double epsilon = epsilon_for(input, options.tetrahedralize);
-  const CoordinateGrid grid = output_grid(registry, files[1], epsilon, options, write_options)(lo, hi);
+  const CoordinateGrid grid = output_grid(registry, files[1], epsilon, options, write_options)(box.min(), box.max());
   const HolesOnlyRepair holes = repair_holes_only(input, grid);
   declined = holes.declined;
   if (!holes.fill) return false;
   const double seconds_fill = seconds_since(start);
   start = std::chrono::steady_clock::now();
-  const SurfaceWrite written = write_surface_keeping_watertight(registry, holes.fill->surface, files[1], write_options,
-                                                               !options.draco_position_bits);
+  const SurfaceWrite written =  // repair_holes_only checked it watertight
+      write_watertight_surface(registry, holes.fill->surface, files[1], write_options, !options.draco_position_bits);
   const double seconds_write = seconds_since(start) - written.written.seconds;
   if (!options.stats_path.empty())
     cli::write_stats_file(options.stats_path,

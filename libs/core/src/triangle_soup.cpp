@@ -65,11 +65,13 @@ std::string find_soup_inconsistency(const TriangleSoup& soup) {
   return {};
 }
 
-double bounding_box_diagonal(const TriangleSoup& soup) {
-  if (soup.positions.empty()) return 0.0;
+Eigen::AlignedBox3d bounding_box(const TriangleSoup& soup) {
+  if (soup.positions.empty()) return Eigen::AlignedBox3d(Vec3d::Zero(), Vec3d::Zero());
   Eigen::AlignedBox3d box;
   for (const Vec3d& p : soup.positions) box.extend(p);
-  return box.diagonal().norm();
+  return box;
 }
+
+double bounding_box_diagonal(const TriangleSoup& soup) { return bounding_box(soup).diagonal().norm(); }
 
 }  // namespace mr

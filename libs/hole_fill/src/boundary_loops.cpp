@@ -1,4 +1,5 @@
 #include "boundary_loops.h"
+#include "mesh_keys.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -20,23 +21,16 @@ struct Step {
   bool reversed;
 };
 
-std::uint64_t edge_key(Index a, Index b) {
-  if (a > b) std::swap(a, b);
-  return (std::uint64_t(a) << 32) | b;
-}
-
-bool degenerate(const Triangle& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
-
 std::vector<BorderEdge> border_edges(const TriangleSoup& soup) {
   std::unordered_map<std::uint64_t, int> uses;
   uses.reserve(soup.triangles.size() * 3);
   for (const Triangle& t : soup.triangles) {
-    if (degenerate(t)) continue;
+    if (repeats_a_vertex(t)) continue;
     for (int i = 0; i < 3; ++i) ++uses[edge_key(t[i], t[(i + 1) % 3])];
   }
   std::vector<BorderEdge> border;
   for (const Triangle& t : soup.triangles) {
-    if (degenerate(t)) continue;
+    if (repeats_a_vertex(t)) continue;
     for (int i = 0; i < 3; ++i) {
       const Index a = t[i], b = t[(i + 1) % 3];
       if (uses[edge_key(a, b)] == 1) border.push_back({b, a, t[(i + 2) % 3], false});

@@ -1,4 +1,5 @@
 #include "filled_surface.h"
+#include "mesh_keys.h"
 
 #include <mr/kernel/intersections.h>
 #include <mr/kernel/predicates.h>
@@ -12,13 +13,6 @@
 
 namespace mr::hole_fill::detail {
 namespace {
-
-std::uint64_t edge_key(Index a, Index b) {
-  if (a > b) std::swap(a, b);
-  return (std::uint64_t(a) << 32) | b;
-}
-
-bool repeats_a_vertex(const Triangle& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
 
 // Twice the mean edge length of the non-degenerate faces: the grid's cell.
 double typical_cell(const TriangleSoup& soup) {

@@ -29,6 +29,8 @@ class FilledSurface {
   explicit FilledSurface(TriangleSoup welded);
 
   const TriangleSoup& surface() const { return soup_; }
+  /// The surface, moved out (the object is done with).
+  TriangleSoup release() && { return std::move(soup_); }
   std::size_t num_vertices() const { return soup_.positions.size(); }
 
   /// Why `patch` may not be added ("a face crosses the surface", ...), or

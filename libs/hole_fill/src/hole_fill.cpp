@@ -3,6 +3,7 @@
 #include "boundary_loops.h"
 #include "filled_surface.h"
 #include "islands.h"
+#include "mesh_keys.h"
 #include "patch.h"
 
 #include <mr/core/weld.h>
@@ -46,7 +47,7 @@ VertexFaces faces_around_vertices(const TriangleSoup& soup) {
   VertexFaces around(soup.positions.size());
   for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
     const Triangle& t = soup.triangles[f];
-    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue;
+    if (detail::repeats_a_vertex(t)) continue;
     for (Index v : t) around[v].push_back(f);
   }
   return around;
@@ -246,7 +247,7 @@ HoleFillResult fill_holes(const TriangleSoup& input, const HoleFillOptions& opti
     }
     result.holes.push_back(work[i].report);
   }
-  result.surface = surface.surface();
+  result.surface = std::move(surface).release();
   return result;
 }
 

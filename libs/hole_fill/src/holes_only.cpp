@@ -1,6 +1,7 @@
 #include <mr/hole_fill/holes_only.h>
 
 #include "filled_surface.h"
+#include "mesh_keys.h"
 
 #include <mr/core/weld.h>
 #include <mr/kernel/predicates.h>
@@ -14,12 +15,10 @@
 namespace mr::hole_fill {
 namespace {
 
-std::uint64_t directed_key(Index a, Index b) { return (std::uint64_t(a) << 32) | b; }
-
 std::string face_refusal(const TriangleSoup& soup) {
   std::set<std::array<Index, 3>> seen;
   for (const Triangle& t : soup.triangles) {
-    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0] ||
+    if (detail::repeats_a_vertex(t) ||
         collinear(soup.positions[t[0]], soup.positions[t[1]], soup.positions[t[2]]))
       return "a face is degenerate";
     std::array<Index, 3> sorted = t;
@@ -36,10 +35,10 @@ std::string edge_refusal(const TriangleSoup& soup) {
   directed.reserve(soup.triangles.size() * 3);
   for (const Triangle& t : soup.triangles)
     for (int i = 0; i < 3; ++i)
-      if (++directed[directed_key(t[i], t[(i + 1) % 3])] > 1)
+      if (++directed[detail::directed_edge_key(t[i], t[(i + 1) % 3])] > 1)
         return "an edge has more than two faces or its faces disagree on orientation";
   for (const auto& [key, count] : directed)
-    if (!directed.count(directed_key(Index(key & 0xffffffffu), Index(key >> 32)))) return {};
+    if (!directed.count(detail::directed_edge_key(Index(key & 0xffffffffu), Index(key >> 32)))) return {};
   return "no hole";
 }
 

@@ -31,16 +31,6 @@ bool is_closed(const TriangleSoup& input) {
   return detail::find_boundary_defects(weld_identical_vertices(input).triangles).boundary_edges == 0;
 }
 
-std::pair<Vec3d, Vec3d> bounds_of(const TriangleSoup& soup) {
-  Vec3d lo = Vec3d::Zero(), hi = Vec3d::Zero();
-  if (!soup.positions.empty()) lo = hi = soup.positions.front();
-  for (const Vec3d& p : soup.positions) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return {lo, hi};
-}
-
 class StageClock {
  public:
   StageClock(RepairResult& result, std::string name)
@@ -120,22 +110,15 @@ RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::
   }
   if (options.output_grid) {
     StageClock clock(result, "round");
-    const auto [lo, hi] = bounds_of(result.surface);
-    result.grid = options.output_grid(lo, hi);
-    const TriangleSoup unrounded = result.surface;
-    while (true) {
-      try {
-        result.rounding = round_to_grid(result.surface, result.grid, options.rounding);
-        break;
-      } catch (const RunError&) {
-        std::optional<CoordinateGrid> finer;
-        if (options.finer_output_grid) finer = options.finer_output_grid(lo, hi, result.grid);
-        if (!finer) throw;
-        result.surface = unrounded;
-        result.grid = *finer;
-        ++result.finer_grids;
-      }
-    }
+    const Eigen::AlignedBox3d box = bounding_box(result.surface);
+    FinerGrid finer;
+    if (options.finer_output_grid)
+      finer = [&](const CoordinateGrid& refused) { return options.finer_output_grid(box.min(), box.max(), refused); };
+    GridRounding rounded =
+        round_to_grid_or_finer(result.surface, options.output_grid(box.min(), box.max()), finer, options.rounding);
+    result.grid = rounded.grid;
+    result.rounding = rounded.stats;
+    result.finer_grids = rounded.finer_grids;
   }
   if (!detail::find_boundary_defects(result.surface.triangles).closed_manifold())
     throw RunError("repair: internal error: the repaired surface is not a closed manifold");

@@ -55,9 +55,9 @@ Incidence incidence_of(const TriangleSoup& surface) {
   return incidence;
 }
 
-class GridRounding {
+class VertexPlacement {
  public:
-  GridRounding(TriangleSoup& surface, const CoordinateGrid& grid, const GridRoundingOptions& options)
+  VertexPlacement(TriangleSoup& surface, const CoordinateGrid& grid, const GridRoundingOptions& options)
       : surface_(surface), grid_(grid), options_(options), original_(surface.positions),
         incidence_(incidence_of(surface)), on_grid_(surface.positions.size(), 0),
         collapsed_(surface.positions.size(), 0), removed_(surface.triangles.size(), 0) {
@@ -421,7 +421,26 @@ GridRoundingStats round_to_grid(TriangleSoup& surface, const CoordinateGrid& gri
   for (const Vec3d& p : surface.positions)
     if (!grid.nearest(p).allFinite())
       throw RunError("a coordinate of the surface lies outside the range of the output's " + grid.name() + " grid");
-  return GridRounding(surface, grid, options).run();
+  return VertexPlacement(surface, grid, options).run();
+}
+
+GridRounding round_to_grid_or_finer(TriangleSoup& surface, const CoordinateGrid& grid, const FinerGrid& finer,
+                                    const GridRoundingOptions& options) {
+  GridRounding result{grid, {}, 0};
+  const TriangleSoup unrounded = surface;
+  while (true) {
+    try {
+      result.stats = round_to_grid(surface, result.grid, options);
+      return result;
+    } catch (const RunError&) {
+      std::optional<CoordinateGrid> next;
+      if (finer) next = finer(result.grid);
+      if (!next) throw;
+      surface = unrounded;
+      result.grid = *next;
+      ++result.finer_grids;
+    }
+  }
 }
 
 }  // namespace mr::repair

@@ -41,6 +41,10 @@ struct TriangleSoup {
 /// empty string when the soup is consistent.
 std::string find_soup_inconsistency(const TriangleSoup& soup);
 
+/// Axis-aligned bounding box of every vertex, referenced or not; a box at
+/// the origin for an empty soup.
+Eigen::AlignedBox3d bounding_box(const TriangleSoup& soup);
+
 /// Axis-aligned bounding box diagonal length of the referenced and unreferenced
 /// vertices alike; 0 for an empty soup.
 double bounding_box_diagonal(const TriangleSoup& soup);

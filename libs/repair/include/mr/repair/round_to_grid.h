@@ -15,6 +15,8 @@
 #include <mr/core/triangle_soup.h>
 
 #include <cstddef>
+#include <functional>
+#include <optional>
 
 namespace mr::repair {
 
@@ -52,5 +54,21 @@ struct GridRoundingStats {
 /// Throws mr::RunError naming the count of vertices that found no place.
 GridRoundingStats round_to_grid(TriangleSoup& surface, const CoordinateGrid& grid,
                                 const GridRoundingOptions& options = {});
+
+/// A finer grid to round onto when `refused` left some vertex no place
+/// (more Draco bits), or nothing.
+using FinerGrid = std::function<std::optional<CoordinateGrid>(const CoordinateGrid& refused)>;
+
+struct GridRounding {
+  CoordinateGrid grid;          ///< the grid the surface now lies on
+  GridRoundingStats stats;
+  int finer_grids = 0;          ///< grids refused before `grid`
+};
+
+/// round_to_grid onto `grid`, and while it throws, onto the grid `finer`
+/// gives instead (the surface restored first); rethrows when `finer` (or
+/// an empty `finer`) gives nothing.
+GridRounding round_to_grid_or_finer(TriangleSoup& surface, const CoordinateGrid& grid, const FinerGrid& finer,
+                                    const GridRoundingOptions& options = {});
 
 }  // namespace mr::repair
