@@ -83,8 +83,8 @@ int main(int argc, char** argv) {
   for (Mesh::Halfedge_index h : holes) {
     std::vector<Mesh::Face_index> faces;
     std::vector<Mesh::Vertex_index> vertices;
-    const bool faired = std::get<0>(
-        PMP::triangulate_refine_and_fair_hole(mesh, h, std::back_inserter(faces), std::back_inserter(vertices)));
+    const bool faired = std::get<0>(PMP::triangulate_refine_and_fair_hole(mesh, h, std::back_inserter(faces),
+                                                                          std::back_inserter(vertices)));
     filled += faired ? 1 : 0;
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -111,8 +111,8 @@ void BM_orient3d_gmp_rational(benchmark::State& state) {
   const std::vector<Quad>& quads = inputs(static_cast<int>(state.range(0)));
   std::vector<std::array<mr::ExactPoint3, 4>> exact;
   for (const Quad& q : quads) {
-    exact.push_back({mr::ExactPoint3(q[0]), mr::ExactPoint3(q[1]), mr::ExactPoint3(q[2]),
-                     mr::ExactPoint3(q[3])});
+    exact.push_back(
+        {mr::ExactPoint3(q[0]), mr::ExactPoint3(q[1]), mr::ExactPoint3(q[2]), mr::ExactPoint3(q[3])});
   }
   std::size_t i = 0;
   for (auto _ : state) {

@@ -69,7 +69,8 @@ mr::TriangleSoup openmesh_quadric(const mr::TriangleSoup& input, std::size_t tar
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   std::string input_copy;  // --write-input FILE: the input as read or generated, for other tools
-  if (const auto it = std::find(args.begin(), args.end(), "--write-input"); it != args.end() && it + 1 != args.end()) {
+  if (const auto it = std::find(args.begin(), args.end(), "--write-input");
+      it != args.end() && it + 1 != args.end()) {
     input_copy = *(it + 1);
     args.erase(it, it + 2);
   }
@@ -101,7 +102,8 @@ int main(int argc, char** argv) {
   std::cout << "{\"model\": \"" << model << "\", \"faces_before\": " << ours.faces_before
             << ", \"faces_after\": " << ours.faces_after << ", \"kept_aside\": " << ours.kept_aside_faces
             << ", \"epsilon_abs\": " << ours.epsilon << ", \"seconds\": " << ours_seconds
-            << ", \"seconds_setup\": " << ours.seconds_setup << ", \"seconds_collapse\": " << ours.seconds_collapse
+            << ", \"seconds_setup\": " << ours.seconds_setup
+            << ", \"seconds_collapse\": " << ours.seconds_collapse
             << ", \"seconds_flip\": " << ours.seconds_flip << ", \"peak_rss_mb_input\": " << rss_input
             << ", \"peak_rss_mb\": " << rss_ours << ", \"distance_max\": " << ours_distance.max
             << ", \"distance_back_max\": " << ours_back.max

@@ -40,8 +40,8 @@ int main(int argc, char** argv) {
   std::vector<mr::Vec3d> centroids;
   centroids.reserve(tets.tets.size());
   for (const mr::Tet& t : tets.tets) {
-    centroids.push_back(0.25 * (tets.positions[t[0]] + tets.positions[t[1]] + tets.positions[t[2]] +
-                                tets.positions[t[3]]));
+    centroids.push_back(
+        0.25 * (tets.positions[t[0]] + tets.positions[t[1]] + tets.positions[t[2]] + tets.positions[t[3]]));
   }
   std::optional<mr::WindingNumberTree> tree;
   const double build = seconds([&] { tree.emplace(surface, options); });

@@ -20,7 +20,9 @@ namespace {
 // A bumpy closed sphere: 2 * rings * (segments - 1) triangles.
 mr::TriangleSoup bumpy_sphere(int rings, int segments) {
   mr::TriangleSoup soup;
-  const auto radius = [](double theta, double phi) { return 1.0 + 0.1 * std::sin(5 * theta) * std::cos(7 * phi); };
+  const auto radius = [](double theta, double phi) {
+    return 1.0 + 0.1 * std::sin(5 * theta) * std::cos(7 * phi);
+  };
   soup.positions.emplace_back(0, 0, radius(0, 0));
   for (int i = 1; i < segments; ++i) {
     const double theta = std::numbers::pi * i / segments;
@@ -60,7 +62,8 @@ const Fixture& fixture(int faces) {
     f.tree = std::make_unique<mr::WindingNumberTree>(f.soup);
     std::mt19937_64 rng(1);
     std::uniform_real_distribution<double> coordinate(-1.2, 1.2);
-    for (int i = 0; i < 200000; ++i) f.queries.emplace_back(coordinate(rng), coordinate(rng), coordinate(rng));
+    for (int i = 0; i < 200000; ++i)
+      f.queries.emplace_back(coordinate(rng), coordinate(rng), coordinate(rng));
   }
   return f;
 }

@@ -21,7 +21,8 @@ std::vector<char> binary_stl(std::uint32_t claimed, std::size_t facets_present, 
   return bytes;
 }
 
-std::string ply_header(const std::string& format, const std::string& vertex_count, const std::string& face_count) {
+std::string ply_header(const std::string& format, const std::string& vertex_count,
+                       const std::string& face_count) {
   return "ply\nformat " + format + " 1.0\nelement vertex " + vertex_count +
          "\nproperty float x\nproperty float y\nproperty float z\nelement face " + face_count +
          "\nproperty list uchar int vertex_indices\nend_header\n";

@@ -20,8 +20,7 @@ namespace {
 
 const std::string kHeader41 = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
 const std::string kHeader22 = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
-const std::string kNodes41 =
-    "$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n";
+const std::string kNodes41 = "$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n";
 const std::string kNodes22 = "$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n";
 
 // A valid binary file written by our writer, cut at a fraction of the way
@@ -82,7 +81,8 @@ TEST_CASE("MSH binary truncated in $Nodes and in $Elements", "[tet_io][bad_input
 
 TEST_CASE("MSH ASCII with 2^31 nodes declared in a 1 KB file fails fast", "[tet_io][bad_input]") {
   const std::string huge = "2147483648";
-  std::string ascii41 = kHeader41 + "$Nodes\n1 " + huge + " 1 " + huge + "\n3 1 0 " + huge + "\n1\n0 0 0\n$EndNodes\n";
+  std::string ascii41 =
+      kHeader41 + "$Nodes\n1 " + huge + " 1 " + huge + "\n3 1 0 " + huge + "\n1\n0 0 0\n$EndNodes\n";
   ascii41.resize(1024, '\n');
   test::expect_text_rejected("huge41.msh", ascii41, "$Nodes declares 2147483648 entries", "out.mesh");
   std::string ascii22 = kHeader22 + "$Nodes\n" + huge + "\n1 0 0 0\n$EndNodes\n";
@@ -165,7 +165,8 @@ TEST_CASE("MSH with a section that never ends", "[tet_io][bad_input]") {
 }
 
 TEST_CASE("Medit with a vertex index of 0 or past the count", "[tet_io][bad_input]") {
-  const std::string vertices = "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n";
+  const std::string vertices =
+      "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n";
   test::expect_text_rejected("zero.mesh", vertices + "Tetrahedra\n1\n0 2 3 4 1\nEnd\n", "refers to vertex 0",
                              "out.mesh");
   test::expect_text_rejected("past.mesh", vertices + "Triangles\n1\n1 2 5 1\nEnd\n", "refers to vertex 5",

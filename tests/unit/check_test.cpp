@@ -64,13 +64,15 @@ TEST_CASE("surface defects are counted", "[check]") {
 }
 
 TEST_CASE("self-intersections are decided exactly in every contact case", "[check]") {
-  const std::vector<Vec3d> p = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {1, 1, 0}, {1, -1, 0}, {0.5, 0.5, -1}, {0.5, 0.5, 1}};
+  const std::vector<Vec3d> p = {{0, 0, 0},  {2, 0, 0},      {0, 2, 0},    {1, 1, 0},
+                                {1, -1, 0}, {0.5, 0.5, -1}, {0.5, 0.5, 1}};
   // Sharing edge 0-1, folded onto each other in the plane: intersect.
   CHECK(check::count_self_intersections(two_triangles(p, {0, 1, 2}, {0, 1, 3})) == 1);
   // Sharing edge 0-1, on opposite sides: meet only along the edge.
   CHECK(check::count_self_intersections(two_triangles(p, {0, 1, 2}, {1, 0, 4})) == 0);
   // Sharing vertex 0, coplanar, the second inside the first's angle: overlap.
-  const std::vector<Vec3d> q = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {1, 0.5, 0}, {0.5, 1, 0}, {-1, -0.5, 0}, {-0.5, -1, 0}};
+  const std::vector<Vec3d> q = {{0, 0, 0},   {4, 0, 0},     {0, 4, 0},    {1, 0.5, 0},
+                                {0.5, 1, 0}, {-1, -0.5, 0}, {-0.5, -1, 0}};
   CHECK(check::count_self_intersections(two_triangles(q, {0, 1, 2}, {0, 3, 4})) == 1);
   // Sharing vertex 0, coplanar, pointing away: only the vertex.
   CHECK(check::count_self_intersections(two_triangles(q, {0, 1, 2}, {0, 5, 6})) == 0);
@@ -78,7 +80,8 @@ TEST_CASE("self-intersections are decided exactly in every contact case", "[chec
   const std::vector<Vec3d> r = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {1, 1, -1}, {1, 1, 1}};
   CHECK(check::count_self_intersections(two_triangles(r, {0, 1, 2}, {0, 3, 4})) == 1);
   // Disjoint, and touching at one point (vertex on a face interior).
-  const std::vector<Vec3d> s = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {1, 1, 0}, {1, 1, 1}, {2, 1, 1}, {1, 1, 0.5}};
+  const std::vector<Vec3d> s = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0},  {1, 1, 0},
+                                {1, 1, 1}, {2, 1, 1}, {1, 1, 0.5}};
   CHECK(check::count_self_intersections(two_triangles(s, {0, 1, 2}, {3, 4, 5})) == 1);
   CHECK(check::count_self_intersections(two_triangles(s, {0, 1, 2}, {6, 4, 5})) == 0);
   // A duplicate face.

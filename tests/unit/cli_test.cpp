@@ -16,8 +16,9 @@ TEST_CASE("option table parses flags, values and positionals", "[cli]") {
   double eps = 0;
   bool quiet = false;
   cli::ToolSpec spec{"tool", "does things", {"IN", "OUT"}, "", {}};
-  spec.options = {{"--epsilon", "-e", "EPS", "envelope", [&](const std::string& v) { eps = cli::parse_double("-e", v); }},
-                  {"--quiet", "-q", "", "quiet", [&](const std::string&) { quiet = true; }}};
+  spec.options = {
+      {"--epsilon", "-e", "EPS", "envelope", [&](const std::string& v) { eps = cli::parse_double("-e", v); }},
+      {"--quiet", "-q", "", "quiet", [&](const std::string&) { quiet = true; }}};
   const std::vector<std::string> args{"a.stl", "-e", "-1e-3", "-q", "b.stl"};
   CHECK(cli::parse_arguments(spec, args) == std::vector<std::string>{"a.stl", "b.stl"});
   CHECK(eps == -1e-3);

@@ -125,8 +125,8 @@ TEST_CASE("can_add_face tells exactly which faces OpenMesh's add_face refuses", 
     }
   }
   CHECK(disagreements == 0);
-  CHECK(refused > 1000);         // all three kinds of refusal occur
-  CHECK(log_lines == refused);   // add_face logs each refusal: what to_trimesh avoids
+  CHECK(refused > 1000);        // all three kinds of refusal occur
+  CHECK(log_lines == refused);  // add_face logs each refusal: what to_trimesh avoids
 }
 
 TEST_CASE("grid snapping rounds to the nearest multiple of a power of two", "[core][snap]") {

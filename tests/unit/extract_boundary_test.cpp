@@ -19,7 +19,9 @@ using namespace mr;
 
 namespace {
 
-test::ToolRun run_extract_boundary(const std::vector<std::string>& args) { return test::run_tool(tools::extract_boundary, args); }
+test::ToolRun run_extract_boundary(const std::vector<std::string>& args) {
+  return test::run_tool(tools::extract_boundary, args);
+}
 
 repair::BoundaryRequest request(repair::BoundaryMode mode, std::int32_t label = 0) {
   repair::BoundaryRequest r;
@@ -110,7 +112,8 @@ TEST_CASE("extract-boundary writes the outward boundary of a mesh file", "[extra
   REQUIRE(run.out.empty());
   REQUIRE(check::check_surface(io::read_surface(registry, dir / "two.ply")).volume == Approx(0.5));
 
-  run = run_extract_boundary({(dir / "cube.msh").string(), (dir / "interfaces.obj").string(), "--interfaces"});
+  run =
+      run_extract_boundary({(dir / "cube.msh").string(), (dir / "interfaces.obj").string(), "--interfaces"});
   REQUIRE(run.exit_code == 0);
   REQUIRE(io::read_surface(registry, dir / "interfaces.obj").triangles.size() == 14);
 }
@@ -131,7 +134,8 @@ TEST_CASE("extract-boundary: bad input and usage exit with 2, write failures wit
   REQUIRE(run.exit_code == 2);
   REQUIRE(run.err.find("surface.stl") != std::string::npos);
 
-  test::write_text(dir / "garbage.msh", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 999999999 1 999999999\n");
+  test::write_text(dir / "garbage.msh",
+                   "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 999999999 1 999999999\n");
   run = run_extract_boundary({(dir / "garbage.msh").string(), (dir / "out.stl").string()});
   REQUIRE(run.exit_code == 2);
   REQUIRE(run.err.find("garbage.msh") != std::string::npos);

@@ -49,7 +49,8 @@ void require_gmsh() {
 // A Python 3 that can import meshio: pyenv's python3 may shadow Debian's.
 std::string python_with_meshio() {
   for (const char* python : {"python3", "/usr/bin/python3"})
-    if (std::system((std::string(python) + " -c 'import meshio' > /dev/null 2>&1").c_str()) == 0) return python;
+    if (std::system((std::string(python) + " -c 'import meshio' > /dev/null 2>&1").c_str()) == 0)
+      return python;
   return {};
 }
 
@@ -119,16 +120,18 @@ TEST_CASE("we read the MSH files gmsh writes", "[gmsh]") {
     bool physical_groups;
     int order;
   };
-  const Case cases[] = {{"msh41", true, true, 1}, {"msh41", false, false, 1}, {"msh22", false, true, 1},
-                        {"msh22", true, false, 1}, {"msh41", true, true, 2},  {"msh22", false, true, 2}};
-  for (const bool physical : {true, false}) test::write_text(dir / (physical ? "box.geo" : "plain.geo"), box_geo(physical));
+  const Case cases[] = {{"msh41", true, true, 1},  {"msh41", false, false, 1}, {"msh22", false, true, 1},
+                        {"msh22", true, false, 1}, {"msh41", true, true, 2},   {"msh22", false, true, 2}};
+  for (const bool physical : {true, false})
+    test::write_text(dir / (physical ? "box.geo" : "plain.geo"), box_geo(physical));
   for (const Case& c : cases) {
-    const std::filesystem::path out = dir / (std::string(c.format) + (c.binary ? "b" : "a") +
-                                             (c.physical_groups ? "p" : "") + std::to_string(c.order) + ".msh");
+    const std::filesystem::path out =
+        dir / (std::string(c.format) + (c.binary ? "b" : "a") + (c.physical_groups ? "p" : "") +
+               std::to_string(c.order) + ".msh");
     INFO(out);
-    const CommandResult result = gmsh(quote(dir / (c.physical_groups ? "box.geo" : "plain.geo")) + " -3 -order " +
-                                      std::to_string(c.order) + " -format " + c.format + (c.binary ? " -bin" : "") +
-                                      " -o " + quote(out));
+    const CommandResult result = gmsh(quote(dir / (c.physical_groups ? "box.geo" : "plain.geo")) +
+                                      " -3 -order " + std::to_string(c.order) + " -format " + c.format +
+                                      (c.binary ? " -bin" : "") + " -o " + quote(out));
     INFO(result.output);
     REQUIRE(result.status == 0);
     const TetMesh mesh = io::read_volume(registry, out);
@@ -140,7 +143,8 @@ TEST_CASE("we read the MSH files gmsh writes", "[gmsh]") {
           std::set<std::int32_t>{c.physical_groups ? 7 : 1});
     if (c.physical_groups) {
       CHECK(mesh.faces.size() > 0);
-      CHECK(std::set<std::int32_t>(mesh.face_labels.begin(), mesh.face_labels.end()) == std::set<std::int32_t>{3});
+      CHECK(std::set<std::int32_t>(mesh.face_labels.begin(), mesh.face_labels.end()) ==
+            std::set<std::int32_t>{3});
     } else {
       CHECK(mesh.faces.size() > 0);  // all boundary triangles are saved without physical groups
     }
@@ -152,8 +156,9 @@ TEST_CASE("we read the Medit files gmsh writes, and gmsh reads ours", "[gmsh]") 
   test::TempDir dir("gmsh_medit");
   const io::Registry registry = io::make_default_registry();
   test::write_text(dir / "box.geo", box_geo(true));
-  const CommandResult made = gmsh(quote(dir / "box.geo") + " -3 -setnumber Mesh.SaveElementTagType 2 -format mesh -o " +
-                                   quote(dir / "box.mesh"));  // references = physical tags
+  const CommandResult made =
+      gmsh(quote(dir / "box.geo") + " -3 -setnumber Mesh.SaveElementTagType 2 -format mesh -o " +
+           quote(dir / "box.mesh"));  // references = physical tags
   INFO(made.output);
   REQUIRE(made.status == 0);
   const TetMesh mesh = io::read_volume(registry, dir / "box.mesh");
@@ -162,7 +167,8 @@ TEST_CASE("we read the Medit files gmsh writes, and gmsh reads ours", "[gmsh]") 
   CHECK(std::set<std::int32_t>(mesh.tet_labels.begin(), mesh.tet_labels.end()) == std::set<std::int32_t>{7});
 
   io::write_volume(registry, mesh, dir / "ours.mesh");
-  const CommandResult loaded = gmsh(quote(dir / "ours.mesh") + " -0 -save_all -format msh41 -o " + quote(dir / "back.msh"));
+  const CommandResult loaded =
+      gmsh(quote(dir / "ours.mesh") + " -0 -save_all -format msh41 -o " + quote(dir / "back.msh"));
   INFO(loaded.output);
   REQUIRE(loaded.status == 0);
   const TetMesh back = io::read_volume(registry, dir / "back.msh");
@@ -188,12 +194,13 @@ TEST_CASE("meshio loads the .vtu we write", "[gmsh]") {
     options.binary = binary;
     const std::filesystem::path path = dir / (binary ? "b.vtu" : "a.vtu");
     io::write_volume(registry, grid, path, options);
-    const CommandResult result = run(python +
-                                     " -c 'import sys, meshio; m = meshio.read(sys.argv[1]); "
-                                     "tets = [c.data for c in m.cells if c.type == \"tetra\"]; "
-                                     "print(len(m.points), sum(len(t) for t in tets), sum(int(t.sum()) for t in tets), "
-                                     "int(sum(a.sum() for a in m.cell_data[\"label\"])), repr(float(m.points.sum())))' " +
-                                     quote(path));
+    const CommandResult result =
+        run(python +
+            " -c 'import sys, meshio; m = meshio.read(sys.argv[1]); "
+            "tets = [c.data for c in m.cells if c.type == \"tetra\"]; "
+            "print(len(m.points), sum(len(t) for t in tets), sum(int(t.sum()) for t in tets), "
+            "int(sum(a.sum() for a in m.cell_data[\"label\"])), repr(float(m.points.sum())))' " +
+            quote(path));
     INFO(result.output);
     REQUIRE(result.status == 0);
     std::istringstream fields(result.output);

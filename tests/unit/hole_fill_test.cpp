@@ -204,8 +204,9 @@ TEST_CASE("hole-fill writes the filled surface, checked as written, and its stat
   const io::Registry registry = io::make_default_registry();
   const TriangleSoup input = without_faces(test::sphere(1.0, 4), [](const Vec3d& c) { return c.z() > 0.7; });
   io::write_surface(registry, input, dir / "in.obj");
-  const test::ToolRun run = test::run_tool(tools::hole_fill, {(dir / "in.obj").string(), (dir / "out.glb").string(),
-                                                               "--stats", (dir / "s.json").string(), "-j", "2"});
+  const test::ToolRun run =
+      test::run_tool(tools::hole_fill, {(dir / "in.obj").string(), (dir / "out.glb").string(), "--stats",
+                                        (dir / "s.json").string(), "-j", "2"});
   INFO(run.err);
   REQUIRE(run.exit_code == 0);
   REQUIRE(run.out.find("1 holes, 1 filled") != std::string::npos);
@@ -220,21 +221,25 @@ TEST_CASE("hole-fill writes the filled surface, checked as written, and its stat
     const std::string option(bad);
     const std::size_t eq = option.find('=');
     const test::ToolRun usage = test::run_tool(
-        tools::hole_fill, {(dir / "in.obj").string(), (dir / "bad.glb").string(), option.substr(0, eq), option.substr(eq + 1)});
+        tools::hole_fill,
+        {(dir / "in.obj").string(), (dir / "bad.glb").string(), option.substr(0, eq), option.substr(eq + 1)});
     REQUIRE(usage.exit_code == 2);
     REQUIRE(usage.err.find(option.substr(0, eq)) != std::string::npos);
     REQUIRE(!std::filesystem::exists(dir / "bad.glb"));
   }
 }
 
-TEST_CASE("meshrepair fills the holes of an input that lacks nothing else and keeps every face", "[hole_fill][e2e]") {
+TEST_CASE("meshrepair fills the holes of an input that lacks nothing else and keeps every face",
+          "[hole_fill][e2e]") {
   const test::TempDir dir("meshrepair_holes_only");
   const io::Registry registry = io::make_default_registry();
-  const TriangleSoup input = without_faces(test::sphere(1.0, 4), [](const Vec3d& c) { return c.z() > 0.7 || c.x() > 0.8; });
+  const TriangleSoup input =
+      without_faces(test::sphere(1.0, 4), [](const Vec3d& c) { return c.z() > 0.7 || c.x() > 0.8; });
   io::write_surface(registry, input, dir / "in.obj");
   const std::string in = (dir / "in.obj").string();
 
-  const test::ToolRun run = test::run_tool(tools::meshrepair, {in, (dir / "out.obj").string(), "--stats", (dir / "s.json").string()});
+  const test::ToolRun run = test::run_tool(
+      tools::meshrepair, {in, (dir / "out.obj").string(), "--stats", (dir / "s.json").string()});
   INFO(run.err);
   REQUIRE(run.exit_code == 0);
   const nlohmann::json stats = nlohmann::json::parse(std::ifstream(dir / "s.json"));
@@ -245,10 +250,12 @@ TEST_CASE("meshrepair fills the holes of an input that lacks nothing else and ke
   // OBJ keeps doubles: every input face is in the output, at the same positions.
   const TriangleSoup welded = weld_identical_vertices(input);
   for (std::size_t f = 0; f < welded.triangles.size(); ++f)
-    for (int i = 0; i < 3; ++i) REQUIRE(out.positions[out.triangles[f][i]] == welded.positions[welded.triangles[f][i]]);
+    for (int i = 0; i < 3; ++i)
+      REQUIRE(out.positions[out.triangles[f][i]] == welded.positions[welded.triangles[f][i]]);
 
   const test::ToolRun remesh =
-      test::run_tool(tools::meshrepair, {in, (dir / "remeshed.obj").string(), "--remesh", "--stats", (dir / "r.json").string()});
+      test::run_tool(tools::meshrepair,
+                     {in, (dir / "remeshed.obj").string(), "--remesh", "--stats", (dir / "r.json").string()});
   REQUIRE(remesh.exit_code == 0);
   const nlohmann::json remeshed = nlohmann::json::parse(std::ifstream(dir / "r.json"));
   REQUIRE(remeshed["path"] == "tetrahedralize");
@@ -266,14 +273,16 @@ TEST_CASE("a watertight result is written on a finer Draco grid when the chosen 
   for (Vec3d& p : upper.positions) p.z() = 0.5 + 1e-6 + 0.5 * p.z();
   input.append(upper);
   TriangleSoup tet;
-  tet.positions = {{0.4, 0.4, 0.5 + 2e-7}, {0.6, 0.4, 0.5 + 2e-7}, {0.5, 0.6, 0.5 + 2e-7}, {0.5, 0.5, 0.5 + 8e-7}};
+  tet.positions = {
+      {0.4, 0.4, 0.5 + 2e-7}, {0.6, 0.4, 0.5 + 2e-7}, {0.5, 0.6, 0.5 + 2e-7}, {0.5, 0.5, 0.5 + 8e-7}};
   tet.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
   input.append(tet);
   require_watertight(input);
   const test::TempDir dir("hole_fill_draco");
   const io::Registry registry = io::make_default_registry();
   io::write_surface(registry, input, dir / "in.obj");
-  const test::ToolRun run = test::run_tool(tools::hole_fill, {(dir / "in.obj").string(), (dir / "out.drc").string()});
+  const test::ToolRun run =
+      test::run_tool(tools::hole_fill, {(dir / "in.obj").string(), (dir / "out.drc").string()});
   INFO(run.err);
   REQUIRE(run.exit_code == 0);
   require_watertight(io::read_surface(registry, dir / "out.drc"));
@@ -290,7 +299,8 @@ TEST_CASE("hole-fill writes the same bytes whatever the thread count", "[hole_fi
   std::vector<std::string> outputs;
   for (const char* threads : {"1", "2", "4"}) {
     const std::string out = (dir / (std::string("out") + threads + ".obj")).string();
-    const test::ToolRun run = test::run_tool(tools::hole_fill, {(dir / "in.obj").string(), out, "-j", threads, "-q"});
+    const test::ToolRun run =
+        test::run_tool(tools::hole_fill, {(dir / "in.obj").string(), out, "-j", threads, "-q"});
     INFO(run.err);
     REQUIRE(run.exit_code == 0);
     outputs.push_back(test::read_text(out));

@@ -36,7 +36,8 @@ io::Registry toy_registry() {
     soup.triangles.push_back({0, 1, 2});  // out of range when n < 3
     return soup;
   };
-  toy.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path, const io::WriteOptions&) {
+  toy.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path,
+                         const io::WriteOptions&) {
     if (soup.num_vertices() == 13) throw RunError("unlucky");
     std::ofstream(path) << soup.num_vertices();
   };

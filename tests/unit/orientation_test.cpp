@@ -15,7 +15,9 @@ using namespace mr;
 
 namespace {
 
-void flip(TriangleSoup& soup, std::size_t face) { std::swap(soup.triangles[face][1], soup.triangles[face][2]); }
+void flip(TriangleSoup& soup, std::size_t face) {
+  std::swap(soup.triangles[face][1], soup.triangles[face][2]);
+}
 
 // Every vertex its own copy, as an STL reader that does not weld gives.
 TriangleSoup unwelded(const TriangleSoup& soup) {

@@ -21,8 +21,8 @@
 #include <cstring>
 #include <fstream>
 #include <map>
-#include <random>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <sstream>
 
 using namespace mr;
@@ -80,8 +80,8 @@ repair::RepairResult repair_tets(const TetMesh& tets, const TriangleSoup& input,
 void require_watertight(const TriangleSoup& surface, const TriangleSoup& input, double expected_volume,
                         double volume_tolerance) {
   const check::SurfaceReport r = check::check_surface(surface);
-  CAPTURE(r.boundary_edges, r.nonmanifold_edges, r.nonmanifold_vertices, r.inconsistent_edges, r.degenerate_faces,
-          r.self_intersecting_pairs, r.volume);
+  CAPTURE(r.boundary_edges, r.nonmanifold_edges, r.nonmanifold_vertices, r.inconsistent_edges,
+          r.degenerate_faces, r.self_intersecting_pairs, r.volume);
   REQUIRE(r.watertight());
   // No two vertices share a position (check_surface welds identical positions).
   REQUIRE(r.vertices == surface.positions.size());
@@ -171,7 +171,8 @@ TEST_CASE("a pinch between two solid layers is cut out inside the envelope", "[r
   for (int z = 0; z < 3; ++z)
     for (int x = 0; x < 2; ++x)
       for (int y = 0; y < 2; ++y)
-        if (z != 1 || (Cell{x, y, z} != Cell{1, 0, 1} && Cell{x, y, z} != Cell{0, 1, 1})) cells.push_back({x, y, z});
+        if (z != 1 || (Cell{x, y, z} != Cell{1, 0, 1} && Cell{x, y, z} != Cell{0, 1, 1}))
+          cells.push_back({x, y, z});
   const TetMesh tets = grid_tets(cells);
   const TriangleSoup input = extract_boundary(tets);
   REQUIRE(check::check_surface(input).nonmanifold_edges == 1);  // the fixture really is pinched
@@ -202,7 +203,8 @@ TEST_CASE("random tet subsets of a block become watertight surfaces", "[repair]"
     REQUIRE(result.manifold.nonmanifold_edges_found + result.manifold.nonmanifold_vertices_found > 0);
     const check::SurfaceReport r = check::check_surface(result.surface);
     CAPTURE(r.boundary_edges, r.nonmanifold_edges, r.nonmanifold_vertices, r.inconsistent_edges,
-            r.degenerate_faces, r.self_intersecting_pairs, result.manifold.removed_tets, result.manifold.vertex_copies);
+            r.degenerate_faces, r.self_intersecting_pairs, result.manifold.removed_tets,
+            result.manifold.vertex_copies);
     REQUIRE(r.watertight());
     REQUIRE(r.vertices == result.surface.positions.size());
     REQUIRE(r.volume <= test::tet_volume(kept) + 1e-9);
@@ -244,7 +246,8 @@ TEST_CASE("random tet subsets with the rest of the block on offer become waterti
   }
 }
 
-TEST_CASE("when its rounds run out, the manifold fix falls back to filling the stars of defects", "[repair]") {
+TEST_CASE("when its rounds run out, the manifold fix falls back to filling the stars of defects",
+          "[repair]") {
   // One round cannot resolve these random subsets; the fallback starts
   // again from the flags and only adds tets, so it ends manifold with at
   // least the volume that was kept.
@@ -330,7 +333,8 @@ TEST_CASE("the repair refuses bad options and empty tet sets", "[repair]") {
   options.epsilon = 1e-3;
   REQUIRE_THROWS_AS(repair::repair_surface_from_tets(TetMesh{}, {}, input, options), RunError);
   const std::vector<std::uint8_t> none_inside(test::cube_tets().tets.size(), 0);
-  REQUIRE_THROWS_AS(repair::repair_surface_from_tets(test::cube_tets(), none_inside, input, options), RunError);
+  REQUIRE_THROWS_AS(repair::repair_surface_from_tets(test::cube_tets(), none_inside, input, options),
+                    RunError);
   const std::vector<std::uint8_t> too_few(2, 1);
   REQUIRE_THROWS_AS(repair::repair_surface_from_tets(test::cube_tets(), too_few, input, options), UsageError);
   TetMesh broken = test::cube_tets();
@@ -361,7 +365,9 @@ TEST_CASE("simplify_in_envelope_of keeps the surface in the reference's envelope
 
 namespace {
 
-test::ToolRun run_meshrepair(const std::vector<std::string>& args) { return test::run_tool(tools::meshrepair, args); }
+test::ToolRun run_meshrepair(const std::vector<std::string>& args) {
+  return test::run_tool(tools::meshrepair, args);
+}
 
 std::vector<char> file_bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -422,7 +428,8 @@ TEST_CASE("meshrepair makes broken inputs watertight", "[repair][e2e]") {
       const auto input = dir / (c.name + ".obj");
       io::write_surface(registry, c.input, input);
       const auto stl = dir / (c.name + "_out.stl"), stats = dir / (c.name + ".json");
-      const test::ToolRun run = run_meshrepair({input.string(), stl.string(), "--stats", stats.string(), "-q"});
+      const test::ToolRun run =
+          run_meshrepair({input.string(), stl.string(), "--stats", stats.string(), "-q"});
       CAPTURE(run.err);
       REQUIRE(run.exit_code == 0);
       REQUIRE(run.out.empty());
@@ -438,8 +445,10 @@ TEST_CASE("meshrepair makes broken inputs watertight", "[repair][e2e]") {
       REQUIRE(j["output"]["watertight"] == true);
       REQUIRE(j["output"]["genus"] == 0);
       const double epsilon = j["epsilon_abs"].get<double>();
-      if (c.input_near_output) REQUIRE(j["output"]["hausdorff_input_to_output"].get<double>() <= epsilon * 1.01);
-      if (c.output_near_input) REQUIRE(j["output"]["hausdorff_output_to_input"].get<double>() <= epsilon * 1.01);
+      if (c.input_near_output)
+        REQUIRE(j["output"]["hausdorff_input_to_output"].get<double>() <= epsilon * 1.01);
+      if (c.output_near_input)
+        REQUIRE(j["output"]["hausdorff_output_to_input"].get<double>() <= epsilon * 1.01);
       REQUIRE(j["input"].contains("self_intersecting_pairs"));
       REQUIRE(j["stages"].size() >= 4);
     }
@@ -553,7 +562,8 @@ TriangleSoup as_soup(const TriangleSoup& welded, unsigned seed, bool defects) {
 TriangleSoup jittered(TriangleSoup soup, double amount, unsigned seed) {
   std::mt19937 random(seed);
   std::normal_distribution<double> normal;
-  for (Vec3d& p : soup.positions) p += amount * Vec3d(normal(random), normal(random), normal(random)).normalized();
+  for (Vec3d& p : soup.positions)
+    p += amount * Vec3d(normal(random), normal(random), normal(random)).normalized();
   return soup;
 }
 
@@ -582,7 +592,8 @@ TEST_CASE("meshrepair makes a soup of a sphere watertight in GLB", "[repair][e2e
   require_watertight_glb(as_soup(sphere(1.0, 3), 7, false), "soup");
 }
 
-TEST_CASE("meshrepair makes a soup with duplicated and flipped triangles watertight in GLB", "[repair][e2e]") {
+TEST_CASE("meshrepair makes a soup with duplicated and flipped triangles watertight in GLB",
+          "[repair][e2e]") {
   for (unsigned seed : {8u, 9u, 10u}) {
     CAPTURE(seed);
     require_watertight_glb(as_soup(sphere(1.0, 3), seed, true), "soup_dup_flip");

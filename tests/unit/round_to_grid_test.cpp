@@ -78,7 +78,8 @@ TEST_CASE("quantized grid: values as Draco dequantizes them, covering the box wi
   for (int level : {0, 1, 17, 512, 1023}) {
     const double value = double(float(float(level) * delta) + q.origin[0]);
     REQUIRE(grid.nearest(0, value) == value);
-    if (level < 1023) REQUIRE(grid.step(0, value, 1) == double(float(float(level + 1) * delta) + q.origin[0]));
+    if (level < 1023)
+      REQUIRE(grid.step(0, value, 1) == double(float(float(level + 1) * delta) + q.origin[0]));
   }
   REQUIRE(grid.nearest(0, 1e9) == double(float(float(1023) * delta) + q.origin[0]));  // clamped to the range
 }
@@ -169,7 +170,8 @@ TEST_CASE("writers store positions exactly on the grid they announce", "[grid][i
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  for (const char* name : {"out.stl", "out.glb", "out.gltf", "out.drc", "draco.glb", "out.obj", "out.ply", "out.off"}) {
+  for (const char* name :
+       {"out.stl", "out.glb", "out.gltf", "out.drc", "draco.glb", "out.obj", "out.ply", "out.off"}) {
     SECTION(name) {
       io::WriteOptions options;
       options.draco.position_bits = 14;
@@ -220,8 +222,8 @@ TEST_CASE("meshrepair's STL, GLB and Draco outputs stay watertight where float32
   for (const char* name : {"out.stl", "out.glb", "out.drc"}) {
     SECTION(name) {
       const auto output = dir / name, stats = dir / "stats.json";
-      const test::ToolRun run = test::run_tool(tools::meshrepair, {input.string(), output.string(), "-q",
-                                                                    "--stats", stats.string()});
+      const test::ToolRun run = test::run_tool(
+          tools::meshrepair, {input.string(), output.string(), "-q", "--stats", stats.string()});
       CAPTURE(run.err);
       REQUIRE(run.exit_code == 0);
       const check::SurfaceReport r = check::check_surface(io::read_surface(registry, output));

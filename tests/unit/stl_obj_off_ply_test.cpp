@@ -24,7 +24,8 @@ io::Registry plugin_registry() {
   return registry;
 }
 
-TriangleSoup round_trip(const TriangleSoup& soup, const test::TempDir& dir, const std::string& file, bool binary = true) {
+TriangleSoup round_trip(const TriangleSoup& soup, const test::TempDir& dir, const std::string& file,
+                        bool binary = true) {
   io::WriteOptions options;
   options.binary = binary;
   return test::round_trip(plugin_registry(), soup, dir / file, options);
@@ -62,7 +63,8 @@ TriangleSoup attributed_cube() {
     soup.uvs.emplace_back(t / 7.0f, 1.0f - t / 9.0f);
     soup.colors.emplace_back(v / 7.0f, 0.5f, 1.0f - v / 7.0f, 1.0f);
   }
-  for (std::size_t f = 0; f < soup.num_triangles(); ++f) soup.face_regions.push_back(static_cast<std::int32_t>(f / 4));
+  for (std::size_t f = 0; f < soup.num_triangles(); ++f)
+    soup.face_regions.push_back(static_cast<std::int32_t>(f / 4));
   soup.region_names = {"steel", "glass", "rubber"};
   return soup;
 }
@@ -70,7 +72,8 @@ TriangleSoup attributed_cube() {
 void check_normals_and_uvs(const TriangleSoup& read, const TriangleSoup& original) {
   REQUIRE(read.normals.size() == original.normals.size());
   REQUIRE(read.uvs.size() == original.uvs.size());
-  for (std::size_t v = 0; v < original.normals.size(); ++v) CHECK((read.normals[v] - original.normals[v]).norm() < 1e-6f);
+  for (std::size_t v = 0; v < original.normals.size(); ++v)
+    CHECK((read.normals[v] - original.normals[v]).norm() < 1e-6f);
   for (std::size_t v = 0; v < original.uvs.size(); ++v) CHECK(read.uvs[v] == original.uvs[v]);
 }
 
@@ -86,12 +89,14 @@ void check_region_names_per_face(const TriangleSoup& read, const TriangleSoup& o
     CHECK(read.region_names.at(read.face_regions[f]) == original.region_names.at(original.face_regions[f]));
 }
 
-std::vector<char> binary_stl(const std::string& header_text, const std::vector<std::array<float, 9>>& facets) {
+std::vector<char> binary_stl(const std::string& header_text,
+                             const std::vector<std::array<float, 9>>& facets) {
   std::vector<char> bytes(84 + 50 * facets.size(), 0);
   std::memcpy(bytes.data(), header_text.data(), std::min<std::size_t>(80, header_text.size()));
   const auto count = static_cast<std::uint32_t>(facets.size());
   std::memcpy(bytes.data() + 80, &count, 4);
-  for (std::size_t f = 0; f < facets.size(); ++f) std::memcpy(bytes.data() + 84 + 50 * f + 12, facets[f].data(), 36);
+  for (std::size_t f = 0; f < facets.size(); ++f)
+    std::memcpy(bytes.data() + 84 + 50 * f + 12, facets[f].data(), 36);
   return bytes;
 }
 
@@ -107,7 +112,8 @@ const char* const kLadderVertices = "0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 2 0\n1 2 0\n"
 
 void check_all_facing_up(const TriangleSoup& soup) {
   for (const Triangle& t : soup.triangles) {
-    const Vec3d n = (soup.positions[t[1]] - soup.positions[t[0]]).cross(soup.positions[t[2]] - soup.positions[t[0]]);
+    const Vec3d n =
+        (soup.positions[t[1]] - soup.positions[t[0]]).cross(soup.positions[t[2]] - soup.positions[t[0]]);
     CHECK(n.z() > 0);
   }
 }
@@ -165,7 +171,8 @@ TEST_CASE("a non-manifold STL keeps duplicate, zero-area and repeated-index face
   }
 }
 
-TEST_CASE("binary STL has computed facet normals and a header that does not start with solid", "[openmesh][stl]") {
+TEST_CASE("binary STL has computed facet normals and a header that does not start with solid",
+          "[openmesh][stl]") {
   test::TempDir dir("om_stl_normals");
   TriangleSoup soup = test::cube_soup();
   soup.triangles.push_back({0, 1, 1});  // degenerate: zero normal
@@ -266,14 +273,16 @@ TEST_CASE("OBJ: corners of one position with different uvs average them", "[open
 TEST_CASE("OFF: COFF colours, NOFF normals, counts glued to the keyword, comments", "[openmesh][off]") {
   test::TempDir dir("om_off");
   SECTION("counts glued to the keyword and face colours") {
-    test::write_text(dir / "w.off", "\t  OFF4 2 5 # counts\n0 0 0\n1 0 0\n# comment\n1 1 0\n0 1 0\n"
-                                    "4 0 1 2 3 1.0 0.0 0.0 0.75\n3 0 2 3\n");
+    test::write_text(dir / "w.off",
+                     "\t  OFF4 2 5 # counts\n0 0 0\n1 0 0\n# comment\n1 1 0\n0 1 0\n"
+                     "4 0 1 2 3 1.0 0.0 0.0 0.75\n3 0 2 3\n");
     const TriangleSoup soup = read_soup(dir / "w.off");
     CHECK(soup.num_vertices() == 4);
     CHECK(soup.triangles == std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}, {0, 2, 3}});
   }
   SECTION("COFF with byte colours") {
-    test::write_text(dir / "c.off", "COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0\n0 1 0 0 0 255 51\n3 0 1 2\n");
+    test::write_text(dir / "c.off",
+                     "COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0\n0 1 0 0 0 255 51\n3 0 1 2\n");
     const TriangleSoup soup = read_soup(dir / "c.off");
     REQUIRE(soup.has_colors());
     CHECK(soup.colors[0] == Vec4f(1, 0, 0, 1));
@@ -288,12 +297,14 @@ TEST_CASE("OFF: COFF colours, NOFF normals, counts glued to the keyword, comment
   }
 }
 
-TEST_CASE("PLY tristrips become triangles with alternating orientation, ASCII and big endian", "[openmesh][ply]") {
+TEST_CASE("PLY tristrips become triangles with alternating orientation, ASCII and big endian",
+          "[openmesh][ply]") {
   test::TempDir dir("om_tristrips");
   const std::vector<std::int32_t> strip = {0, 1, 2, 3, -1, 2, 3, 4, 5};
   SECTION("ASCII") {
-    std::string text = "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
-                       "property float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n";
+    std::string text =
+        "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+        "property float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n";
     text += kLadderVertices;
     text += std::to_string(strip.size());
     for (int i : strip) text += " " + std::to_string(i);
@@ -305,9 +316,10 @@ TEST_CASE("PLY tristrips become triangles with alternating orientation, ASCII an
     check_all_facing_up(soup);
   }
   SECTION("binary big endian, double positions") {
-    const std::string header = "ply\nformat binary_big_endian 1.0\nelement vertex 6\nproperty double x\n"
-                               "property double y\nproperty double z\nelement tristrips 1\n"
-                               "property list int int vertex_indices\nend_header\n";
+    const std::string header =
+        "ply\nformat binary_big_endian 1.0\nelement vertex 6\nproperty double x\n"
+        "property double y\nproperty double z\nelement tristrips 1\n"
+        "property list int int vertex_indices\nend_header\n";
     std::vector<char> bytes(header.begin(), header.end());
     const double xyz[6][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 2, 0}, {1, 2, 0.1}};
     for (const auto& p : xyz)
@@ -348,7 +360,8 @@ TEST_CASE("writers throw RunError when the stream fails", "[openmesh]") {
     const io::Format* format = registry.by_name(name);
     REQUIRE(format != nullptr);
     CHECK_THROWS_AS(format->write_surface(soup, "/nonexistent-dir/x." + name, {}), RunError);
-    if (std::filesystem::exists("/dev/full")) CHECK_THROWS_AS(format->write_surface(soup, "/dev/full", {}), RunError);
+    if (std::filesystem::exists("/dev/full"))
+      CHECK_THROWS_AS(format->write_surface(soup, "/dev/full", {}), RunError);
   }
 }
 

@@ -12,8 +12,7 @@ namespace mr::test {
 
 TriangleSoup cube_soup(double lo, double hi) {
   TriangleSoup soup;
-  for (int i = 0; i < 8; ++i)
-    soup.positions.emplace_back(i & 1 ? hi : lo, i & 2 ? hi : lo, i & 4 ? hi : lo);
+  for (int i = 0; i < 8; ++i) soup.positions.emplace_back(i & 1 ? hi : lo, i & 2 ? hi : lo, i & 4 ? hi : lo);
   soup.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                     {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
   return soup;
@@ -79,7 +78,8 @@ TempDir::~TempDir() {
 
 std::vector<std::string> TempDir::files() const {
   std::vector<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(path_)) names.push_back(entry.path().filename());
+  for (const auto& entry : std::filesystem::directory_iterator(path_))
+    names.push_back(entry.path().filename());
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -109,7 +109,9 @@ CapturedStderr::~CapturedStderr() {
   std::clog.rdbuf(clog_);
 }
 
-ToolRun run_format_convert(const std::vector<std::string>& args) { return run_tool(tools::format_convert, args); }
+ToolRun run_format_convert(const std::vector<std::string>& args) {
+  return run_tool(tools::format_convert, args);
+}
 
 double enclosed_volume(const TriangleSoup& soup) {
   double six_volume = 0;

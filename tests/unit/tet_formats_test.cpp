@@ -64,8 +64,11 @@ struct Variant {
   const char* msh_version;
 };
 
-const Variant kVariants[] = {{"a.msh", false, "4.1"}, {"b.msh", true, "4.1"}, {"c.msh", false, "2.2"},
-                             {"d.msh", true, "2.2"},  {"e.mesh", false, "4.1"}};
+const Variant kVariants[] = {{"a.msh", false, "4.1"},
+                             {"b.msh", true, "4.1"},
+                             {"c.msh", false, "2.2"},
+                             {"d.msh", true, "2.2"},
+                             {"e.mesh", false, "4.1"}};
 
 TetMesh round_trip(const TetMesh& mesh, const test::TempDir& dir, const Variant& variant) {
   io::WriteOptions options;
@@ -88,7 +91,9 @@ double orient(const TetMesh& mesh, const Tet& t) {
   return (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a).dot(mesh.positions[t[3]] - a);
 }
 
-TetMesh read_mesh(const std::filesystem::path& path) { return io::read_volume(io::make_default_registry(), path); }
+TetMesh read_mesh(const std::filesystem::path& path) {
+  return io::read_volume(io::make_default_registry(), path);
+}
 
 }  // namespace
 
@@ -240,7 +245,7 @@ std::vector<char> msh2_binary_file(bool swap) {
   }
   f.text("\n$EndNodes\n$Elements\n3\n");
   for (std::int32_t v : {1, 1, 3, 7, 5, 0, 1, 100, 101}) f.put(v);  // a line with 3 tags
-  for (std::int32_t v : {4, 2, 2}) f.put(v);                       // two tets with 2 tags
+  for (std::int32_t v : {4, 2, 2}) f.put(v);                        // two tets with 2 tags
   for (std::int32_t v : {2, 4, 12, 100, 101, 102, 103, 3, 0, 13, 100, 102, 101, 103}) f.put(v);
   f.text("\n$EndElements\n");
   return f.bytes();
@@ -292,13 +297,15 @@ TEST_CASE("format-convert turns a .msh volume into its boundary surface", "[tet_
   test::TempDir dir("tet_to_surface");
   const io::Registry registry = io::make_default_registry();
   io::write_volume(registry, test::cube_tets(), dir / "cube.msh");
-  const test::ToolRun run = test::run_format_convert({(dir / "cube.msh").string(), (dir / "cube.obj").string()});
+  const test::ToolRun run =
+      test::run_format_convert({(dir / "cube.msh").string(), (dir / "cube.obj").string()});
   INFO(run.err);
   REQUIRE(run.exit_code == 0);
   const TriangleSoup surface = io::read_surface(registry, dir / "cube.obj");
   CHECK(surface.triangles.size() == 12);
   CHECK(test::enclosed_volume(surface) == Approx(1.0));
-  const test::ToolRun medit = test::run_format_convert({(dir / "cube.msh").string(), (dir / "cube.mesh").string()});
+  const test::ToolRun medit =
+      test::run_format_convert({(dir / "cube.msh").string(), (dir / "cube.mesh").string()});
   REQUIRE(medit.exit_code == 0);
   check_same(test::cube_tets(), read_mesh(dir / "cube.mesh"));
 }

@@ -99,7 +99,8 @@ void damage(Mesh& mesh, unsigned seed) {
       if (fixed > 1) continue;  // cube edges and corners stay
     }
     const bool sliver = !mesh.has_flag(v, kOnSurface) && v % 23 == 0;
-    for (const double scale : sliver ? std::vector<double>{3.3, 3.2, 3.0} : std::vector<double>{1.0, 0.5, 0.25}) {
+    for (const double scale :
+         sliver ? std::vector<double>{3.3, 3.2, 3.0} : std::vector<double>{1.0, 0.5, 0.25}) {
       const HybridPoint before = mesh.position(v);
       mesh.position(v) = HybridPoint(Vec3d(p + scale * move));
       bool positive = true;
@@ -157,7 +158,8 @@ TrackedSurface tracked_surface(const Mesh& mesh, const TriangleSoup& cube, const
       const Index u = mesh.neighbour(t, f);
       if (u != kNoTet && u < t) continue;  // count each face once
       const auto c = mesh.face_vertices(t, f);
-      const Vec3d &a = mesh.position(c[0]).approx, &b = mesh.position(c[1]).approx, &d = mesh.position(c[2]).approx;
+      const Vec3d &a = mesh.position(c[0]).approx, &b = mesh.position(c[1]).approx,
+                  &d = mesh.position(c[2]).approx;
       ++out.faces;
       out.area += 0.5 * (b - a).cross(d - a).norm();
       out.inside = out.inside && env.is_inside(a, b, d);
@@ -235,7 +237,8 @@ TEST_CASE("improve: splits long edges and collapses short ones towards the targe
   REQUIRE(find_mesh_inconsistency(coarse_mesh.mesh) == "");
   CHECK(split.splits > 0);
   CHECK(all_tets_positive_on_doubles(coarse_mesh.mesh));
-  const TrackedSurface after_split = tracked_surface(coarse_mesh.mesh, coarse_mesh.cube, *coarse_mesh.envelope);
+  const TrackedSurface after_split =
+      tracked_surface(coarse_mesh.mesh, coarse_mesh.cube, *coarse_mesh.envelope);
   CHECK(after_split.faces > 6 * 4 * 4 * 2);
   CHECK(after_split.inside);
   CHECK(after_split.ids_on_their_triangles);
@@ -352,8 +355,8 @@ TEST_CASE("improve: round_vertices rounds a rational vertex whose nearest double
 
 TEST_CASE("improve: round_vertices rounds in place when that is safe", "[improve]") {
   Mesh mesh = from_tet_mesh(kuhn_grid());
-  const Index v = split_edge(mesh, kGridA, kGridB,
-                             HybridPoint::from_exact(ExactPoint3(mpq_class(3, 5), 0.5, 0.5)));
+  const Index v =
+      split_edge(mesh, kGridA, kGridB, HybridPoint::from_exact(ExactPoint3(mpq_class(3, 5), 0.5, 0.5)));
   REQUIRE(v != kNoVertex);
   REQUIRE(mesh.position(v).is_exact());
   const RoundingStats stats = round_vertices(mesh, *unit_cube_envelope());

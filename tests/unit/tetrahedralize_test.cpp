@@ -86,9 +86,10 @@ std::vector<Case> broken_inputs() {
       {"two overlapping cubes", merged(test::cube_soup(), translated(test::cube_soup(), {0.5, 0.5, 0.5})),
        2.0 - 0.125, area_eps},
       {"cube with a missing face", missing_face, 1.0, 0.1, false, false},
-      {"coplanar stack", merged(test::cube_soup(), translated(test::cube_soup(), {0.0, 0.0, 1.0})), 2.0, area_eps},
-      {"bowtie (cubes sharing an edge)", merged(test::cube_soup(), translated(test::cube_soup(), {1.0, 1.0, 0.0})),
-       2.0, area_eps},
+      {"coplanar stack", merged(test::cube_soup(), translated(test::cube_soup(), {0.0, 0.0, 1.0})), 2.0,
+       area_eps},
+      {"bowtie (cubes sharing an edge)",
+       merged(test::cube_soup(), translated(test::cube_soup(), {1.0, 1.0, 0.0})), 2.0, area_eps},
       {"duplicated faces", duplicated, 1.0, area_eps},
       // The default grid is about 1e-6 here: a needle 1e-5 thick is
       // inserted, one 1e-9 thick is flattened to a segment (left
@@ -103,7 +104,9 @@ std::vector<Case> broken_inputs() {
   };
 }
 
-test::ToolRun run_tetrahedralize(const std::vector<std::string>& args) { return test::run_tool(tools::tetrahedralize, args); }
+test::ToolRun run_tetrahedralize(const std::vector<std::string>& args) {
+  return test::run_tool(tools::tetrahedralize, args);
+}
 
 std::string file_bytes(const std::filesystem::path& path) {
   std::ifstream file(path, std::ios::binary);
@@ -249,7 +252,8 @@ TEST_CASE("tetrahedralize: --no-filter labels the regions the input separates", 
   for (std::size_t t = 0; t < result.mesh.tets.size(); ++t) {
     const auto& p = result.mesh.positions;
     const Tet& c = result.mesh.tets[t];
-    volume[result.mesh.tet_labels[t]] += (p[c[1]] - p[c[0]]).cross(p[c[2]] - p[c[0]]).dot(p[c[3]] - p[c[0]]) / 6;
+    volume[result.mesh.tet_labels[t]] +=
+        (p[c[1]] - p[c[0]]).cross(p[c[2]] - p[c[0]]).dot(p[c[3]] - p[c[0]]) / 6;
   }
   REQUIRE(volume.size() == 2);  // inside and outside the cube
   const double first = volume.begin()->second;
@@ -262,14 +266,17 @@ TEST_CASE("tetrahedralize tool: writes a valid mesh, stats and the tracked surfa
   test::TempDir dir("tetrahedralize");
   const io::Registry registry = io::make_default_registry();
   const auto input = dir.path() / "overlap.obj";
-  io::write_surface(registry, merged(test::cube_soup(), translated(test::cube_soup(), {0.5, 0.5, 0.5})), input);
+  io::write_surface(registry, merged(test::cube_soup(), translated(test::cube_soup(), {0.5, 0.5, 0.5})),
+                    input);
   const auto a = dir.path() / "a.msh", b = dir.path() / "b.msh", stats = dir.path() / "stats.json";
   const auto surface = dir.path() / "surface.obj";
-  const test::ToolRun first = run_tetrahedralize(
-      {input.string(), a.string(), "-j", "1", "--max-passes", "4", "--stats", stats.string(), "--surface", surface.string(), "-q"});
+  const test::ToolRun first =
+      run_tetrahedralize({input.string(), a.string(), "-j", "1", "--max-passes", "4", "--stats",
+                          stats.string(), "--surface", surface.string(), "-q"});
   CAPTURE(first.err);
   REQUIRE(first.exit_code == 0);
-  const test::ToolRun second = run_tetrahedralize({input.string(), b.string(), "-j", "2", "--max-passes", "4", "-q"});
+  const test::ToolRun second =
+      run_tetrahedralize({input.string(), b.string(), "-j", "2", "--max-passes", "4", "-q"});
   REQUIRE(second.exit_code == 0);
   CHECK(file_bytes(a) == file_bytes(b));
 
@@ -281,7 +288,8 @@ TEST_CASE("tetrahedralize tool: writes a valid mesh, stats and the tracked surfa
   const nlohmann::json j = nlohmann::json::parse(stats_file);
   CHECK(j["output"]["tets"].get<std::size_t>() == report.tets);
   CHECK(j["quality"]["inverted_tets"] == 0);
-  CHECK(j["envelope"]["tracked_surface_to_input_max"].get<double>() <= j["envelope"]["epsilon"].get<double>());
+  CHECK(j["envelope"]["tracked_surface_to_input_max"].get<double>() <=
+        j["envelope"]["epsilon"].get<double>());
   CHECK(j["peak_memory_mb"].get<double>() > 0);
   CHECK(j["stages"].size() >= 5);
 }

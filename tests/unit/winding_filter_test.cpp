@@ -37,7 +37,8 @@ TriangleSoup mark_box(Mesh& mesh, bool open = true) {
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
     for (int k = 0; k < 4; ++k) {
       std::array<Index, 3> f = mesh.face_vertices(t, k);
-      const Vec3d a = mesh.position(f[0]).approx, b = mesh.position(f[1]).approx, c = mesh.position(f[2]).approx;
+      const Vec3d a = mesh.position(f[0]).approx, b = mesh.position(f[1]).approx,
+                  c = mesh.position(f[2]).approx;
       if (!on_box(a) || !on_box(b) || !on_box(c)) continue;
       const Vec3d normal = (b - a).cross(c - a);
       const Vec3d centre = (a + b + c) / 3.0;
@@ -84,8 +85,8 @@ TEST_CASE("winding filter: an open surface is asked of the input away from where
     REQUIRE(std::all_of(offsets.begin(), offsets.end(), [](double d) { return d == 0.0; }));
     const WindingNumberTree tracked(tracked_faces(mesh, input));
     std::size_t near = 1;
-    const TetClassification fast = classify_tets_near_input(mesh, tracked, input, none_left_out, offsets,
-                                                            WindingRule::absolute, &near);
+    const TetClassification fast =
+        classify_tets_near_input(mesh, tracked, input, none_left_out, offsets, WindingRule::absolute, &near);
     const TetClassification all = classify_tets(mesh, tracked, WindingRule::absolute);
     CHECK(near == 0);
     CHECK(fast.keep == all.keep);
@@ -100,12 +101,13 @@ TEST_CASE("winding filter: an open surface is asked of the input away from where
     mesh.position(bottom_centre) = HybridPoint(Vec3d(0.5, 0.5, -0.01));
     const std::vector<double> offsets = tracked_surface_offsets(mesh, input);
     CHECK(*std::max_element(offsets.begin(), offsets.end()) == Approx(0.01));
-    CHECK(std::count(offsets.begin(), offsets.end(), 0.0) == static_cast<long>(input.triangles.size()) - 6);  // its star on the bottom
+    CHECK(std::count(offsets.begin(), offsets.end(), 0.0) ==
+          static_cast<long>(input.triangles.size()) - 6);  // its star on the bottom
 
     const WindingNumberTree tracked(tracked_faces(mesh, input));
     std::size_t near = 0;
-    const TetClassification fast = classify_tets_near_input(mesh, tracked, input, none_left_out, offsets,
-                                                            WindingRule::absolute, &near);
+    const TetClassification fast =
+        classify_tets_near_input(mesh, tracked, input, none_left_out, offsets, WindingRule::absolute, &near);
     const TetClassification all = classify_tets(mesh, tracked, WindingRule::absolute);
     CHECK(near > 0);
     CHECK(near < mesh.num_tets() / 10);
@@ -120,9 +122,9 @@ TEST_CASE("winding filter: an open surface is asked of the input away from where
   SECTION("triangles left out are not part of the chain") {
     std::vector<char> left_out(input.triangles.size(), 1);
     const WindingNumberTree tracked(TriangleSoup{});
-    const TetClassification fast = classify_tets_near_input(mesh, tracked, input, left_out,
-                                                            std::vector<double>(input.triangles.size(), 0.0),
-                                                            WindingRule::absolute);
+    const TetClassification fast =
+        classify_tets_near_input(mesh, tracked, input, left_out,
+                                 std::vector<double>(input.triangles.size(), 0.0), WindingRule::absolute);
     CHECK(fast.kept == 0);
   }
 }
@@ -146,7 +148,8 @@ TEST_CASE("winding filter: a closed input with a triangle left out is decided pe
   const std::vector<char> barrier = tets_near(mesh, hole);
   const auto barrier_tets = std::count(barrier.begin(), barrier.end(), 1);
   CHECK(barrier_tets >= 2);  // at least the two tets on either side of the hole
-  CHECK(barrier_tets < static_cast<long>(mesh.num_tets()) / 5);  // the doubled bounding spheres reach a cell or two
+  CHECK(barrier_tets <
+        static_cast<long>(mesh.num_tets()) / 5);  // the doubled bounding spheres reach a cell or two
 
   // Without the barrier the inside leaks out through the hole: one region.
   const TetClassification leaking = classify_regions(mesh, input, WindingRule::absolute);
@@ -163,7 +166,8 @@ namespace {
 // Two triangles of the rectangle origin + [0, 1] u + [0, 1] v, split along
 // origin -> origin + u + v (the direction of the Kuhn grid's face
 // diagonals), facing `outward`.
-void add_rectangle(TriangleSoup& soup, const Vec3d& origin, const Vec3d& u, const Vec3d& v, const Vec3d& outward) {
+void add_rectangle(TriangleSoup& soup, const Vec3d& origin, const Vec3d& u, const Vec3d& v,
+                   const Vec3d& outward) {
   const bool flip = u.cross(v).dot(outward) < 0.0;
   const std::array<Vec3d, 3> first{origin, origin + u, origin + u + v};
   const std::array<Vec3d, 3> second{origin, origin + u + v, origin + v};
@@ -206,8 +210,8 @@ TEST_CASE("winding filter: barrier tets that straddle a left-out triangle are re
   const double wall = 0.75, strip = 0.125;
   TriangleSoup box;
   const Vec3d x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
-  add_rectangle(box, lo, wall * x, wall * y, -z);                       // bottom
-  add_rectangle(box, Vec3d(0, 0, 0.875), wall * x, wall * y, z);        // top
+  add_rectangle(box, lo, wall * x, wall * y, -z);                 // bottom
+  add_rectangle(box, Vec3d(0, 0, 0.875), wall * x, wall * y, z);  // top
   for (const double at : {0.0, 0.75}) {
     const Vec3d out = at == 0.0 ? Vec3d(-1, 0, 0) : Vec3d(1, 0, 0);
     add_rectangle(box, Vec3d(at, 0, 0), wall * y, wall * z, out);
@@ -223,9 +227,8 @@ TEST_CASE("winding filter: barrier tets that straddle a left-out triangle are re
     for (int k = 0; k < 4; ++k) {
       const std::array<Index, 3> f = mesh.face_vertices(t, k);
       for (std::size_t i = 0; i < box.triangles.size(); ++i) {
-        const bool inside = std::all_of(f.begin(), f.end(), [&](Index v) {
-          return in_axis_triangle(box, i, mesh.position(v).approx);
-        });
+        const bool inside = std::all_of(
+            f.begin(), f.end(), [&](Index v) { return in_axis_triangle(box, i, mesh.position(v).approx); });
         if (!inside) continue;
         const std::uint32_t id = static_cast<std::uint32_t>(i);
         mesh.set_surface_ids(t, k, std::span<const std::uint32_t>(&id, 1));
@@ -271,7 +274,10 @@ TEST_CASE("winding filter: barrier tets that straddle a left-out triangle are re
       if (!mesh.tet_alive(t) || classes.keep[t] == 0) continue;
       const Tet& c = mesh.tet(t);
       const Vec3d a = mesh.position(c[0]).approx;
-      volume += (mesh.position(c[1]).approx - a).cross(mesh.position(c[2]).approx - a).dot(mesh.position(c[3]).approx - a) / 6.0;
+      volume += (mesh.position(c[1]).approx - a)
+                    .cross(mesh.position(c[2]).approx - a)
+                    .dot(mesh.position(c[3]).approx - a) /
+                6.0;
       for (int k = 0; k < 4; ++k) {
         const Index n = mesh.neighbour(t, k);
         if (n != kNoTet && classes.keep[n] != 0) continue;

@@ -18,7 +18,8 @@ int draco_position_bits_for(double extent, double epsilon) {
 std::optional<CoordinateGrid> finer_draco_grid(const io::Registry& registry, const std::string& path,
                                                io::WriteOptions& options, const Vec3d& lo, const Vec3d& hi,
                                                const CoordinateGrid& refused) {
-  if (refused.kind() != CoordinateGrid::Kind::quantized || refused.quantization().bits >= 30) return std::nullopt;
+  if (refused.kind() != CoordinateGrid::Kind::quantized || refused.quantization().bits >= 30)
+    return std::nullopt;
   options.draco.position_bits = std::min(30, refused.quantization().bits + 2);
   options.draco.position_grid.reset();
   const CoordinateGrid grid = io::surface_position_grid(registry, path, options, lo, hi);
@@ -26,8 +27,9 @@ std::optional<CoordinateGrid> finer_draco_grid(const io::Registry& registry, con
   return grid;
 }
 
-SurfaceWrite write_watertight_surface(const io::Registry& registry, TriangleSoup surface, const std::string& path,
-                                      io::WriteOptions options, bool finer_draco_grid) {
+SurfaceWrite write_watertight_surface(const io::Registry& registry, TriangleSoup surface,
+                                      const std::string& path, io::WriteOptions options,
+                                      bool finer_draco_grid) {
   SurfaceWrite result;
   result.watertight = true;
   const Eigen::AlignedBox3d box = bounding_box(surface);
@@ -39,7 +41,8 @@ SurfaceWrite write_watertight_surface(const io::Registry& registry, TriangleSoup
       return tools::finer_draco_grid(registry, path, options, box.min(), box.max(), refused);
     };
   result.rounding = repair::round_to_grid_or_finer(surface, grid, finer).stats;
-  io::write_surface(registry, surface, path, options, check::watertight_file_check(registry, path, &result.written));
+  io::write_surface(registry, surface, path, options,
+                    check::watertight_file_check(registry, path, &result.written));
   return result;
 }
 

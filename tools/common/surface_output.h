@@ -41,7 +41,8 @@ SurfaceWrite write_surface_keeping_watertight(const io::Registry& registry, Tria
 
 /// The same for a surface the caller knows to be watertight in doubles
 /// (no check before rounding; the written file is still checked).
-SurfaceWrite write_watertight_surface(const io::Registry& registry, TriangleSoup surface, const std::string& path,
-                                      io::WriteOptions options, bool finer_draco_grid = true);
+SurfaceWrite write_watertight_surface(const io::Registry& registry, TriangleSoup surface,
+                                      const std::string& path, io::WriteOptions options,
+                                      bool finer_draco_grid = true);
 
 }  // namespace mr::tools

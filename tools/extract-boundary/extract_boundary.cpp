@@ -100,7 +100,8 @@ int extract_boundary(const std::vector<std::string>& args, std::ostream& out, st
   ToolOptions options;
   const cli::ToolSpec spec = make_spec(options);
   return cli::run_tool(spec, args, out, err, [&](const std::vector<std::string>& files) {
-    if (options.label_given && options.interfaces) throw UsageError("--label and --interfaces exclude each other");
+    if (options.label_given && options.interfaces)
+      throw UsageError("--label and --interfaces exclude each other");
     options.request.mode = options.interfaces    ? repair::BoundaryMode::interfaces
                            : options.label_given ? repair::BoundaryMode::label
                                                  : repair::BoundaryMode::all;

@@ -42,8 +42,7 @@ std::string format_table(const io::Registry& registry) {
   out << "Formats (chosen by extension; --from/--to override):\n";
   for (const io::Format& format : registry.formats()) {
     out << "  " << format.name << " (";
-    for (std::size_t i = 0; i < format.extensions.size(); ++i)
-      out << (i ? " " : "") << format.extensions[i];
+    for (std::size_t i = 0; i < format.extensions.size(); ++i) out << (i ? " " : "") << format.extensions[i];
     out << ") " << (format.kind == io::MeshKind::volume ? "volume" : "surface") << ", "
         << (format.can_read() ? "read" : "") << (format.can_read() && format.can_write() ? "/" : "")
         << (format.can_write() ? "write" : "") << ": " << format.description << "\n";
@@ -56,8 +55,9 @@ cli::ToolSpec make_spec(ConvertOptions& o, const io::Registry& registry) {
   using cli::parse_int;
   cli::ToolSpec spec;
   spec.name = "format-convert";
-  spec.summary = "Convert a mesh between formats: surface to surface, volume to volume, "
-                 "or volume to surface (its boundary).";
+  spec.summary =
+      "Convert a mesh between formats: surface to surface, volume to volume, "
+      "or volume to surface (its boundary).";
   spec.positionals = {"IN", "OUT"};
   spec.description = format_table(registry);
   auto& w = o.write;

@@ -47,7 +47,9 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       "edges form no loop; -v and --stats say why for each hole.";
   spec.options = {
       {"--max-boundary", "", "N", "leave open holes of more than N border edges",
-       [&](const std::string& v) { o.fill.max_boundary = std::size_t(cli::parse_int("--max-boundary", v, 3, INT_MAX)); }},
+       [&](const std::string& v) {
+         o.fill.max_boundary = std::size_t(cli::parse_int("--max-boundary", v, 3, INT_MAX));
+       }},
       {"--max-diameter", "", "D",
        "leave open holes whose border's bounding box diagonal exceeds D (model units)",
        [&](const std::string& v) {
@@ -63,8 +65,9 @@ cli::ToolSpec make_spec(ToolOptions& o) {
          o.fill.density = v == "keep" ? hole_fill::Density::keep : hole_fill::Density::coarse;
        }},
       cli::ascii_option(o.write.binary),
-      cli::stats_option(o.stats_path, "write holes found, filled and skipped (with why), patch faces and seconds per "
-                                      "hole as JSON"),
+      cli::stats_option(o.stats_path,
+                        "write holes found, filled and skipped (with why), patch faces and seconds per "
+                        "hole as JSON"),
       cli::threads_option(o.threads),
       cli::quiet_option(o.quiet),
       cli::verbose_option(o.verbose, "also print every hole"),
@@ -123,7 +126,8 @@ nlohmann::json make_stats(const FillRun& r) {
           {"output_faces", r.result.surface.triangles.size()},
           {"holes_found", r.result.holes.size()},
           {"holes_filled", count(r, HoleOutcome::filled)},
-          {"holes_skipped", {{"too_long", count(r, HoleOutcome::too_long)}, {"too_wide", count(r, HoleOutcome::too_wide)}}},
+          {"holes_skipped",
+           {{"too_long", count(r, HoleOutcome::too_long)}, {"too_wide", count(r, HoleOutcome::too_wide)}}},
           {"holes_failed", count(r, HoleOutcome::failed)},
           {"open_border_edges", r.result.open_border_edges},
           {"patch_faces", patch_faces},
@@ -138,7 +142,8 @@ nlohmann::json make_stats(const FillRun& r) {
 void print_holes(const FillRun& r, std::ostream& err) {
   for (std::size_t i = 0; i < r.result.holes.size(); ++i) {
     const hole_fill::HoleReport& h = r.result.holes[i];
-    err << "hole-fill: hole " << i << ": " << h.border_edges << " border edges, " << hole_fill::to_string(h.outcome);
+    err << "hole-fill: hole " << i << ": " << h.border_edges << " border edges, "
+        << hole_fill::to_string(h.outcome);
     if (h.outcome == hole_fill::HoleOutcome::filled)
       err << " by " << h.method << " (" << h.patch_faces << " faces, " << h.seconds << " s)";
     else if (h.outcome == hole_fill::HoleOutcome::failed)
@@ -166,9 +171,11 @@ int hole_fill(const std::vector<std::string>& args, std::ostream& out, std::ostr
     if (failed > 0)
       unfilled = std::to_string(failed) + " holes could not be filled without the patch meeting the surface";
     if (r.result.open_border_edges > 0)
-      unfilled += (unfilled.empty() ? "" : "; ") + std::to_string(r.result.open_border_edges) +
-                  " border edges are on no loop (they end where an edge of three or more faces meets the border)";
-    if (!unfilled.empty()) throw RunError(files[0] + ": " + unfilled + " (the rest is written to " + files[1] + ")");
+      unfilled +=
+          (unfilled.empty() ? "" : "; ") + std::to_string(r.result.open_border_edges) +
+          " border edges are on no loop (they end where an edge of three or more faces meets the border)";
+    if (!unfilled.empty())
+      throw RunError(files[0] + ": " + unfilled + " (the rest is written to " + files[1] + ")");
   });
 }
 

@@ -4,4 +4,6 @@
 
 #include <iostream>
 
-int main(int argc, char** argv) { return mr::tools::hole_fill(mr::cli::arguments(argc, argv), std::cout, std::cerr); }
+int main(int argc, char** argv) {
+  return mr::tools::hole_fill(mr::cli::arguments(argc, argv), std::cout, std::cerr);
+}

@@ -22,8 +22,8 @@ namespace {
 enum class Expectation { automatic, watertight, valid_tets, none };
 
 struct CheckOptions {
-  std::string reference;  // input the mesh was made from, for distances
-  double epsilon = 1e-3;  // relative to the reference's bbox diagonal
+  std::string reference;     // input the mesh was made from, for distances
+  double epsilon = 1e-3;     // relative to the reference's bbox diagonal
   double epsilon_abs = 0.0;  // absolute; overrides epsilon when > 0
   bool self_intersections = true;
   Expectation expect = Expectation::automatic;
@@ -153,7 +153,8 @@ bool check_file(const std::string& path, const CheckOptions& o, nlohmann::json& 
     const check::SurfaceReport r = check::check_surface(surface, surface_options);
     report["kind"] = "surface";
     report["surface"] = to_json(r);
-    if (expect == Expectation::valid_tets) throw UsageError(path + " is a surface; --expect valid-tets needs a tet mesh");
+    if (expect == Expectation::valid_tets)
+      throw UsageError(path + " is a surface; --expect valid-tets needs a tet mesh");
     if (expect == Expectation::watertight) ok = r.watertight();
   }
   if (!o.reference.empty()) ok = add_distances(registry, surface, o, report) && ok;

@@ -12,7 +12,7 @@
 namespace mr::tools {
 
 struct HolesOnlyRepair {
-  std::string declined;                         ///< why the path was not taken; empty when it was
+  std::string declined;                           ///< why the path was not taken; empty when it was
   std::optional<hole_fill::HoleFillResult> fill;  ///< set when it was: a watertight surface, outward
 };
 

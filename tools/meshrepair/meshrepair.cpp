@@ -80,7 +80,9 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        [&](const std::string&) { o.write.draco.compress_gltf = true; }},
       {"--draco-position-bits", "", "N",
        "Draco position quantization bits (default: a grid step of at most epsilon/64, 12 to 30 bits)",
-       [&](const std::string& v) { o.draco_position_bits = cli::parse_int("--draco-position-bits", v, 1, 30); }},
+       [&](const std::string& v) {
+         o.draco_position_bits = cli::parse_int("--draco-position-bits", v, 1, 30);
+       }},
       cli::ascii_option(o.write.binary),
       cli::stats_option(o.stats_path,
                         "write input defects, output figures (faces, genus, volume, Hausdorff distances both "
@@ -108,11 +110,12 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 // The grid the output file stores positions on, for a surface inside [lo, hi];
 // Draco's quantization is fixed here, and the writer is told to use it.
 std::function<CoordinateGrid(const Vec3d&, const Vec3d&)> output_grid(const io::Registry& registry,
-                                                                     const std::string& path, double epsilon,
-                                                                     const ToolOptions& options,
-                                                                     io::WriteOptions& write) {
+                                                                      const std::string& path, double epsilon,
+                                                                      const ToolOptions& options,
+                                                                      io::WriteOptions& write) {
   return [&registry, path, epsilon, &options, &write](const Vec3d& lo, const Vec3d& hi) {
-    write.draco.position_bits = options.draco_position_bits.value_or(draco_position_bits_for((hi - lo).maxCoeff(), epsilon));
+    write.draco.position_bits =
+        options.draco_position_bits.value_or(draco_position_bits_for((hi - lo).maxCoeff(), epsilon));
     CoordinateGrid grid = io::surface_position_grid(registry, path, write, lo, hi);
     if (grid.kind() == CoordinateGrid::Kind::quantized) write.draco.position_grid = grid.quantization();
     return grid;
@@ -121,8 +124,9 @@ std::function<CoordinateGrid(const Vec3d&, const Vec3d&)> output_grid(const io::
 
 // Two more Draco bits when no place on the grid is left for some vertex, if
 // meshrepair chose the bits (not --draco-position-bits), up to 30.
-std::function<std::optional<CoordinateGrid>(const Vec3d&, const Vec3d&, const CoordinateGrid&)> finer_output_grid(
-    const io::Registry& registry, const std::string& path, const ToolOptions& options, io::WriteOptions& write) {
+std::function<std::optional<CoordinateGrid>(const Vec3d&, const Vec3d&, const CoordinateGrid&)>
+finer_output_grid(const io::Registry& registry, const std::string& path, const ToolOptions& options,
+                  io::WriteOptions& write) {
   return [&registry, path, &options, &write](const Vec3d& lo, const Vec3d& hi,
                                              const CoordinateGrid& refused) -> std::optional<CoordinateGrid> {
     if (options.draco_position_bits) return std::nullopt;
@@ -137,8 +141,9 @@ double epsilon_for(const TriangleSoup& input, const tetmesh::TetrahedralizeOptio
 
 // The holes-only path: its holes filled, the input written back with the
 // patches, checked as written. False (nothing written) when it declines.
-bool try_holes_only(const ToolOptions& options, const io::Registry& registry, const std::vector<std::string>& files,
-                    const TriangleSoup& input, double seconds_read, std::string& declined, std::ostream& out) {
+bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
+                    const std::vector<std::string>& files, const TriangleSoup& input, double seconds_read,
+                    std::string& declined, std::ostream& out) {
   if (options.remesh) {
     declined = "--remesh";
     return false;
@@ -147,25 +152,30 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry, co
   io::WriteOptions write_options = options.write;
   const Eigen::AlignedBox3d box = bounding_box(input);
   const double epsilon = epsilon_for(input, options.tetrahedralize);
-  const CoordinateGrid grid = output_grid(registry, files[1], epsilon, options, write_options)(box.min(), box.max());
+  const CoordinateGrid grid =
+      output_grid(registry, files[1], epsilon, options, write_options)(box.min(), box.max());
   const HolesOnlyRepair holes = repair_holes_only(input, grid);
   declined = holes.declined;
   if (!holes.fill) return false;
   const double seconds_fill = seconds_since(start);
   start = std::chrono::steady_clock::now();
   const SurfaceWrite written =  // repair_holes_only checked it watertight
-      write_watertight_surface(registry, holes.fill->surface, files[1], write_options, !options.draco_position_bits);
+      write_watertight_surface(registry, holes.fill->surface, files[1], write_options,
+                               !options.draco_position_bits);
   const double seconds_write = seconds_since(start) - written.written.seconds;
   if (!options.stats_path.empty())
     cli::write_stats_file(options.stats_path,
-                          make_holes_only_stats({input, *holes.fill, written, epsilon, seconds_read, seconds_fill, seconds_write}).dump(2));
+                          make_holes_only_stats({input, *holes.fill, written, epsilon, seconds_read,
+                                                 seconds_fill, seconds_write})
+                              .dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << holes.fill->surface.triangles.size()
         << " faces, watertight (" << holes.fill->holes.size() << " holes filled, every input face kept)\n";
   return true;
 }
 
-void run(const ToolOptions& options, const std::vector<std::string>& files, std::ostream& out, std::ostream& err) {
+void run(const ToolOptions& options, const std::vector<std::string>& files, std::ostream& out,
+         std::ostream& err) {
   const io::Registry registry = io::make_default_registry();
   auto start = std::chrono::steady_clock::now();
   const TriangleSoup input = io::read_surface(registry, files[0]);
@@ -181,17 +191,20 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   // peeled surface is oriented by the tets, so it comes out outward).
   pipeline_options.tetrahedralize.winding_rule = tetmesh::WindingRule::absolute;
   pipeline_options.improve = false;  // the fast path: a valid embedding, not well-shaped tets
-  const tetmesh::PipelineResult pipeline = tetmesh::tetrahedralize(input, pipeline_options, make_logger(options, err));
+  const tetmesh::PipelineResult pipeline =
+      tetmesh::tetrahedralize(input, pipeline_options, make_logger(options, err));
 
   repair::RepairOptions repair_options;
   repair_options.epsilon = pipeline.parameters.epsilon;
   repair_options.threads = options.tetrahedralize.threads;
   repair_options.cleanup = options.cleanup;
   io::WriteOptions write_options = options.write;
-  repair_options.output_grid = output_grid(registry, files[1], pipeline.parameters.epsilon, options, write_options);
+  repair_options.output_grid =
+      output_grid(registry, files[1], pipeline.parameters.epsilon, options, write_options);
   repair_options.finer_output_grid = finer_output_grid(registry, files[1], options, write_options);
   std::vector<std::uint8_t> inside(pipeline.mesh.tet_labels.begin(), pipeline.mesh.tet_labels.end());
-  const repair::RepairResult repaired = repair::repair_surface_from_tets(pipeline.mesh, inside, input, repair_options);
+  const repair::RepairResult repaired =
+      repair::repair_surface_from_tets(pipeline.mesh, inside, input, repair_options);
   if (options.verbose && !options.quiet) {
     for (const repair::StageTime& stage : repaired.stages)
       err << "meshrepair: end " << stage.name << " (" << stage.seconds << " s)\n";
@@ -203,11 +216,13 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
                     check::watertight_file_check(registry, files[1], &written));
   const double seconds_write = seconds_since(start) - written.seconds;
   if (!options.stats_path.empty())
-    cli::write_stats_file(options.stats_path,
-                          make_repair_stats({input, pipeline, repaired, written, seconds_read, seconds_write, declined}).dump(2));
+    cli::write_stats_file(options.stats_path, make_repair_stats({input, pipeline, repaired, written,
+                                                                 seconds_read, seconds_write, declined})
+                                                  .dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << repaired.surface.triangles.size()
-        << " faces, watertight (" << repaired.manifold.nonmanifold_edges_found + repaired.manifold.nonmanifold_vertices_found
+        << " faces, watertight ("
+        << repaired.manifold.nonmanifold_edges_found + repaired.manifold.nonmanifold_vertices_found
         << " non-manifold spots resolved, epsilon " << pipeline.parameters.epsilon << ")\n";
 }
 

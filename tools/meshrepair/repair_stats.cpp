@@ -94,7 +94,8 @@ nlohmann::json stage_seconds(const RepairRun& run) {
     for (const auto& [key, value] : s.counts) stage["counts"][key] = value;
     stages.push_back(std::move(stage));
   }
-  for (const repair::StageTime& s : run.repair.stages) stages.push_back({{"name", s.name}, {"seconds", s.seconds}});
+  for (const repair::StageTime& s : run.repair.stages)
+    stages.push_back({{"name", s.name}, {"seconds", s.seconds}});
   stages.push_back({{"name", "write"}, {"seconds", run.seconds_write}});
   stages.push_back({{"name", "check_written"}, {"seconds", run.written.seconds}});
   return stages;
@@ -104,44 +105,50 @@ nlohmann::json stage_seconds(const RepairRun& run) {
 
 nlohmann::json make_repair_stats(const RepairRun& run) {
   const auto start = std::chrono::steady_clock::now();
-  nlohmann::json stats = {{"path", "tetrahedralize"},
-                          {"hole_fill_declined", run.hole_fill_declined},
-                          {"input", input_defects(run.input)},
-                          {"epsilon_abs", run.pipeline.parameters.epsilon},
-                          {"bbox_diagonal", run.pipeline.parameters.diagonal},
-                          {"kept_tets", std::count(run.pipeline.mesh.tet_labels.begin(),
-                                                   run.pipeline.mesh.tet_labels.end(), 1)},
-                          {"repair", repair_figures(run.repair)},
-                          {"output", output_figures(run.repair.surface, run.input)},
-                          {"written_file", written_figures(run.written.surface)},
-                          {"stages", stage_seconds(run)}};
-  stats["seconds_measuring"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  nlohmann::json stats = {
+      {"path", "tetrahedralize"},
+      {"hole_fill_declined", run.hole_fill_declined},
+      {"input", input_defects(run.input)},
+      {"epsilon_abs", run.pipeline.parameters.epsilon},
+      {"bbox_diagonal", run.pipeline.parameters.diagonal},
+      {"kept_tets", std::count(run.pipeline.mesh.tet_labels.begin(), run.pipeline.mesh.tet_labels.end(), 1)},
+      {"repair", repair_figures(run.repair)},
+      {"output", output_figures(run.repair.surface, run.input)},
+      {"written_file", written_figures(run.written.surface)},
+      {"stages", stage_seconds(run)}};
+  stats["seconds_measuring"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }
 
 nlohmann::json make_holes_only_stats(const HolesOnlyRun& run) {
   const auto start = std::chrono::steady_clock::now();
   std::size_t patch_faces = 0, patch_vertices = 0;
-  for (const hole_fill::HoleReport& h : run.fill.holes) patch_faces += h.patch_faces, patch_vertices += h.patch_vertices;
+  for (const hole_fill::HoleReport& h : run.fill.holes)
+    patch_faces += h.patch_faces, patch_vertices += h.patch_vertices;
   nlohmann::json stats = {
       {"path", "hole_fill"},
       {"input", input_defects(run.input)},
       {"epsilon_abs", run.epsilon},
       {"bbox_diagonal", bounding_box_diagonal(run.input)},
-      {"holes", {{"found", run.fill.holes.size()},
-                 {"filled", run.fill.filled()},
-                 {"kept_input_faces", run.fill.input_faces},
-                 {"patch_faces", patch_faces},
-                 {"patch_vertices", patch_vertices}}},
-      {"repair", {{"rounded_vertices", run.written.rounding.moved},
-                  {"rounded_off_nearest", run.written.rounding.nearest_refused}}},
+      {"holes",
+       {{"found", run.fill.holes.size()},
+        {"filled", run.fill.filled()},
+        {"kept_input_faces", run.fill.input_faces},
+        {"patch_faces", patch_faces},
+        {"patch_vertices", patch_vertices}}},
+      {"repair",
+       {{"rounded_vertices", run.written.rounding.moved},
+        {"rounded_off_nearest", run.written.rounding.nearest_refused}}},
       {"output", output_figures(run.fill.surface, run.input)},
       {"written_file", written_figures(run.written.written.surface)},
-      {"stages", nlohmann::json::array({{{"name", "read"}, {"seconds", run.seconds_read}},
-                                        {{"name", "hole_fill"}, {"seconds", run.seconds_fill}},
-                                        {{"name", "write"}, {"seconds", run.seconds_write}},
-                                        {{"name", "check_written"}, {"seconds", run.written.written.seconds}}})}};
-  stats["seconds_measuring"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      {"stages",
+       nlohmann::json::array({{{"name", "read"}, {"seconds", run.seconds_read}},
+                              {{"name", "hole_fill"}, {"seconds", run.seconds_fill}},
+                              {{"name", "write"}, {"seconds", run.seconds_write}},
+                              {{"name", "check_written"}, {"seconds", run.written.written.seconds}}})}};
+  stats["seconds_measuring"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }
 

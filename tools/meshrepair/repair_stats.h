@@ -5,8 +5,8 @@
 #include "surface_output.h"
 
 #include <mr/check/written_file.h>
-#include <mr/hole_fill/hole_fill.h>
 #include <mr/core/triangle_soup.h>
+#include <mr/hole_fill/hole_fill.h>
 #include <mr/repair/repair.h>
 #include <mr/tetmesh/tetrahedralize.h>
 

@@ -63,7 +63,8 @@ cli::ToolSpec make_spec(ToolOptions& o) {
   return spec;
 }
 
-nlohmann::json make_stats(const ToolOptions& o, const TriangleSoup& input, const simplify::SimplifyResult& r) {
+nlohmann::json make_stats(const ToolOptions& o, const TriangleSoup& input,
+                          const simplify::SimplifyResult& r) {
   const check::DistanceReport distance = check::one_sided_distance(r.soup, input);
   const double diagonal = bounding_box_diagonal(input);
   return {

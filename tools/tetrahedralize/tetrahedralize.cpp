@@ -143,12 +143,14 @@ int tetrahedralize(const std::vector<std::string>& args, std::ostream& out, std:
     const tetmesh::PipelineResult result = tetmesh::tetrahedralize(input, options.pipeline, logger);
     const check::TetReport quality = check::check_tets(result.mesh, {.self_intersections = false});
     if (quality.tets == 0) {
-      throw RunError(files[0] + ": no tet lies inside the input (winding number nowhere above 1/2 in magnitude); "
+      throw RunError(files[0] +
+                     ": no tet lies inside the input (winding number nowhere above 1/2 in magnitude); "
                      "nothing written. --no-filter keeps every tet");
     }
     if (!quality.valid()) {
       throw RunError("the mesh failed its final exact check (" + std::to_string(quality.inverted_tets) +
-                     " inverted, " + std::to_string(quality.degenerate_tets) + " flat tets); nothing written");
+                     " inverted, " + std::to_string(quality.degenerate_tets) +
+                     " flat tets); nothing written");
     }
     io::write_volume(registry, result.mesh, files[1], options.write);
     if (!options.surface_path.empty())
@@ -158,8 +160,8 @@ int tetrahedralize(const std::vector<std::string>& args, std::ostream& out, std:
     }
     if (!options.quiet) {
       out << files[0] << ": " << result.mesh.tets.size() << " tets, " << result.mesh.positions.size()
-          << " vertices, min dihedral " << quality.min_dihedral_deg << " deg, max AMIPS "
-          << quality.max_amips << ", " << result.stats.total_seconds() << " s\n";
+          << " vertices, min dihedral " << quality.min_dihedral_deg << " deg, max AMIPS " << quality.max_amips
+          << ", " << result.stats.total_seconds() << " s\n";
     }
   });
 }

@@ -56,7 +56,9 @@ bool meet_beyond_vertex(const Face& f, const Face& g, int fi, int gi, const std:
     const auto side_a = CGAL::coplanar_orientation(v, apex_a, apex_b, q);
     const auto side_b = CGAL::coplanar_orientation(v, apex_b, apex_a, q);
     if (side_a == CGAL::POSITIVE && side_b == CGAL::POSITIVE) return true;
-    auto on_ray = [&](const Point& apex) { return CGAL::collinear(v, apex, q) && CGAL::compare_xyz(v, apex) == CGAL::compare_xyz(v, q); };
+    auto on_ray = [&](const Point& apex) {
+      return CGAL::collinear(v, apex, q) && CGAL::compare_xyz(v, apex) == CGAL::compare_xyz(v, q);
+    };
     return on_ray(apex_a) || on_ray(apex_b);
   };
   return ray_inside_angle(f1, f2, g1) || ray_inside_angle(f1, f2, g2) || ray_inside_angle(g1, g2, f1) ||
@@ -64,7 +66,8 @@ bool meet_beyond_vertex(const Face& f, const Face& g, int fi, int gi, const std:
 }
 
 // Faces sharing an edge meet elsewhere iff they are coplanar and fold onto each other.
-bool meet_beyond_edge(const Face& f, const Face& g, const int sf[2], const int sg[2], const std::vector<Point>& p) {
+bool meet_beyond_edge(const Face& f, const Face& g, const int sf[2], const int sg[2],
+                      const std::vector<Point>& p) {
   const Point& u = p[f.v[sf[0]]];
   const Point& w = p[f.v[sf[1]]];
   const Point& a = p[f.v[third(sf[0], sf[1])]];
@@ -75,10 +78,14 @@ bool meet_beyond_edge(const Face& f, const Face& g, const int sf[2], const int s
 bool faces_intersect(const Face& f, const Face& g, const std::vector<Point>& p) {
   int sf[3], sg[3];
   switch (shared_vertices(f.v, g.v, sf, sg)) {
-    case 0: return CGAL::do_intersect(f.t, g.t);
-    case 1: return meet_beyond_vertex(f, g, sf[0], sg[0], p);
-    case 2: return meet_beyond_edge(f, g, sf, sg, p);
-    default: return true;  // the same three vertices: a duplicate
+    case 0:
+      return CGAL::do_intersect(f.t, g.t);
+    case 1:
+      return meet_beyond_vertex(f, g, sf[0], sg[0], p);
+    case 2:
+      return meet_beyond_edge(f, g, sf, sg, p);
+    default:
+      return true;  // the same three vertices: a duplicate
   }
 }
 

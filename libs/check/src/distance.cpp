@@ -28,7 +28,9 @@ std::vector<Vec3d> sample_points(const TriangleSoup& soup, const DistanceOptions
   const double diagonal = bounding_box_diagonal(soup);
   double total_area = 0;
   for (const Triangle& t : soup.triangles)
-    total_area += 0.5 * (soup.positions[t[1]] - soup.positions[t[0]]).cross(soup.positions[t[2]] - soup.positions[t[0]]).norm();
+    total_area += 0.5 * (soup.positions[t[1]] - soup.positions[t[0]])
+                            .cross(soup.positions[t[2]] - soup.positions[t[0]])
+                            .norm();
   double density = diagonal > 0 ? options.density / (diagonal * diagonal) : 0;
   const double fixed = 6.0 * double(soup.triangles.size());
   if (fixed + density * total_area > double(options.max_samples))
@@ -39,7 +41,8 @@ std::vector<Vec3d> sample_points(const TriangleSoup& soup, const DistanceOptions
   std::vector<Vec3d> samples;
   for (const Triangle& t : soup.triangles) {
     const Vec3d &a = soup.positions[t[0]], &b = soup.positions[t[1]], &c = soup.positions[t[2]];
-    for (const Vec3d& p : {a, b, c, Vec3d((a + b) / 2), Vec3d((b + c) / 2), Vec3d((c + a) / 2)}) samples.push_back(p);
+    for (const Vec3d& p : {a, b, c, Vec3d((a + b) / 2), Vec3d((b + c) / 2), Vec3d((c + a) / 2)})
+      samples.push_back(p);
     const double area = 0.5 * (b - a).cross(c - a).norm();
     const double expected = density * area;
     auto count = static_cast<std::size_t>(expected);
@@ -58,11 +61,13 @@ std::vector<Vec3d> sample_points(const TriangleSoup& soup, const DistanceOptions
 
 }  // namespace
 
-DistanceReport one_sided_distance(const TriangleSoup& from, const TriangleSoup& to, const DistanceOptions& options) {
+DistanceReport one_sided_distance(const TriangleSoup& from, const TriangleSoup& to,
+                                  const DistanceOptions& options) {
   DistanceReport report;
   std::vector<CgalTriangle> triangles;
   for (const Triangle& t : to.triangles) {
-    CgalTriangle tri(to_point(to.positions[t[0]]), to_point(to.positions[t[1]]), to_point(to.positions[t[2]]));
+    CgalTriangle tri(to_point(to.positions[t[0]]), to_point(to.positions[t[1]]),
+                     to_point(to.positions[t[2]]));
     if (!tri.is_degenerate()) triangles.push_back(tri);
   }
   if (triangles.empty() || from.triangles.empty()) return report;

@@ -30,7 +30,8 @@ std::vector<EdgeUse> edge_uses(const std::vector<Triangle>& triangles) {
     for (int k = 0; k < 3; ++k) {
       const int a = k, b = (k + 1) % 3;
       const bool forward = t[a] < t[b];
-      uses.push_back({std::min(t[a], t[b]), std::max(t[a], t[b]), forward, f, forward ? a : b, forward ? b : a});
+      uses.push_back(
+          {std::min(t[a], t[b]), std::max(t[a], t[b]), forward, f, forward ? a : b, forward ? b : a});
     }
   }
   std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
@@ -85,7 +86,8 @@ void count_faces(const detail::Welded& mesh, SurfaceReport& report) {
     if (repeats_index(t) || detail::exactly_collinear(a, b, c)) ++report.degenerate_faces;
   }
   std::sort(sorted.begin(), sorted.end());
-  report.duplicate_faces = sorted.size() - static_cast<std::size_t>(std::unique(sorted.begin(), sorted.end()) - sorted.begin());
+  report.duplicate_faces =
+      sorted.size() - static_cast<std::size_t>(std::unique(sorted.begin(), sorted.end()) - sorted.begin());
   std::vector<std::size_t> roots;
   for (const Triangle& t : mesh.triangles) roots.push_back(vertices.find(t[0]));
   std::sort(roots.begin(), roots.end());
@@ -124,8 +126,10 @@ std::string watertight_failures(const SurfaceReport& r) {
   if (r.self_intersecting_pairs > 0)
     add(static_cast<std::size_t>(r.self_intersecting_pairs), "self-intersecting face pair",
         "self-intersecting face pairs");
-  if (r.self_intersecting_pairs < 0) out += std::string(out.empty() ? "" : ", ") + "self-intersections not checked";
-  if (out.empty() && !(r.volume > 0)) out = "not oriented outward (enclosed volume " + std::to_string(r.volume) + ")";
+  if (r.self_intersecting_pairs < 0)
+    out += std::string(out.empty() ? "" : ", ") + "self-intersections not checked";
+  if (out.empty() && !(r.volume > 0))
+    out = "not oriented outward (enclosed volume " + std::to_string(r.volume) + ")";
   return out;
 }
 

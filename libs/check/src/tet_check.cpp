@@ -3,8 +3,8 @@
 #include <mr/check/tet_check.h>
 #include <mr/core/boundary.h>
 
-#include <tbb/parallel_reduce.h>
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 #include <Eigen/Dense>
 

@@ -25,7 +25,8 @@ Welded weld_identical(const TriangleSoup& soup) {
     remap[order[k]] = static_cast<Index>(welded.positions.size() - 1);
   }
   welded.triangles.reserve(soup.triangles.size());
-  for (const Triangle& t : soup.triangles) welded.triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
+  for (const Triangle& t : soup.triangles)
+    welded.triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
   return welded;
 }
 

@@ -8,8 +8,8 @@
 namespace mr::check::detail {
 
 struct Welded {
-  std::vector<Vec3d> positions;       ///< unique positions
-  std::vector<Triangle> triangles;    ///< same order as the soup's
+  std::vector<Vec3d> positions;     ///< unique positions
+  std::vector<Triangle> triangles;  ///< same order as the soup's
 };
 
 Welded weld_identical(const TriangleSoup& soup);

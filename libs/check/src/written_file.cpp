@@ -6,7 +6,8 @@
 
 namespace mr::check {
 
-io::WrittenFileCheck watertight_file_check(const io::Registry& registry, const std::filesystem::path& destination,
+io::WrittenFileCheck watertight_file_check(const io::Registry& registry,
+                                           const std::filesystem::path& destination,
                                            WrittenFileReport* report) {
   return [&registry, destination, report](const std::filesystem::path& written) {
     const auto start = std::chrono::steady_clock::now();

@@ -10,8 +10,7 @@ namespace {
 
 const Option* find_option(const ToolSpec& spec, const std::string& name) {
   for (const Option& option : spec.options)
-    if (option.long_name == name || (!option.short_name.empty() && option.short_name == name))
-      return &option;
+    if (option.long_name == name || (!option.short_name.empty() && option.short_name == name)) return &option;
   return nullptr;
 }
 

@@ -36,9 +36,10 @@ std::string files_prefix(const std::vector<std::string>& files) {
 
 }  // namespace
 
-int run_tool(const ToolSpec& spec, const std::vector<std::string>& args, std::ostream& out,
-             std::ostream& err, const std::function<void(const std::vector<std::string>&)>& body) {
-  if (std::any_of(args.begin(), args.end(), [](const std::string& a) { return a == "-h" || a == "--help"; })) {
+int run_tool(const ToolSpec& spec, const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+             const std::function<void(const std::vector<std::string>&)>& body) {
+  if (std::any_of(args.begin(), args.end(),
+                  [](const std::string& a) { return a == "-h" || a == "--help"; })) {
     out << help_text(spec);
     return exit_ok;
   }

@@ -38,7 +38,8 @@ std::int32_t label_of(const TetMesh& mesh, std::size_t tet) {
 }
 
 // Keeps only referenced vertices, in order of first use.
-TriangleSoup compact(const TetMesh& mesh, std::vector<Triangle> triangles, std::vector<std::int32_t> regions) {
+TriangleSoup compact(const TetMesh& mesh, std::vector<Triangle> triangles,
+                     std::vector<std::int32_t> regions) {
   TriangleSoup soup;
   std::vector<Index> remap(mesh.positions.size(), Index(-1));
   for (Triangle& t : triangles)
@@ -84,8 +85,7 @@ TriangleSoup extract_interfaces(const TetMesh& mesh) {
       triangles.push_back(faces[i].oriented);
       regions.push_back(first);
     } else if (j - i == 2 && label_of(mesh, faces[i + 1].tet) != first) {
-      const std::size_t lower =
-          label_of(mesh, faces[i + 1].tet) < first ? i + 1 : i;
+      const std::size_t lower = label_of(mesh, faces[i + 1].tet) < first ? i + 1 : i;
       triangles.push_back(faces[lower].oriented);
       regions.push_back(label_of(mesh, faces[lower].tet));
     }

@@ -21,7 +21,8 @@ double nearest_float(double x) {
 
 double float_steps(double g, int steps) {
   float f = static_cast<float>(g);
-  const float towards = steps > 0 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
+  const float towards =
+      steps > 0 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
   for (int k = 0; k < std::abs(steps); ++k) f = std::nextafter(f, towards);
   return static_cast<double>(f);
 }
@@ -46,14 +47,16 @@ float options_resolution(double x) {
 }
 
 double double_steps(double g, int steps) {
-  const double towards = steps > 0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
+  const double towards =
+      steps > 0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
   for (int k = 0; k < std::abs(steps); ++k) g = std::nextafter(g, towards);
   return g;
 }
 
 }  // namespace
 
-CoordinateGrid::CoordinateGrid(Kind kind, const Quantization& quantization) : kind_(kind), quantization_(quantization) {
+CoordinateGrid::CoordinateGrid(Kind kind, const Quantization& quantization)
+    : kind_(kind), quantization_(quantization) {
   if (kind_ != Kind::quantized) return;
   if (quantization_.bits < 1 || quantization_.bits > 30)
     throw UsageError("quantization must be 1 to 30 bits, not " + std::to_string(quantization_.bits));
@@ -72,7 +75,8 @@ CoordinateGrid CoordinateGrid::quantized(const Quantization& quantization) {
 }
 
 CoordinateGrid CoordinateGrid::quantized_over(const Vec3d& lo, const Vec3d& hi, int bits) {
-  if (bits < 1 || bits > 30) throw UsageError("quantization must be 1 to 30 bits, not " + std::to_string(bits));
+  if (bits < 1 || bits > 30)
+    throw UsageError("quantization must be 1 to 30 bits, not " + std::to_string(bits));
   const double extent = std::max((hi - lo).maxCoeff(), double(std::numeric_limits<float>::min()));
   const double levels = static_cast<double>((std::int64_t{1} << bits) - 1);
   // The margin takes steps of the grid it widens: extent + 2 m (extent + 2 m) / levels = range.
@@ -95,9 +99,12 @@ CoordinateGrid CoordinateGrid::quantized_over(const Vec3d& lo, const Vec3d& hi, 
 
 std::string CoordinateGrid::name() const {
   switch (kind_) {
-    case Kind::doubles: return "float64";
-    case Kind::float32: return "float32";
-    case Kind::quantized: return std::to_string(quantization_.bits) + "-bit quantization";
+    case Kind::doubles:
+      return "float64";
+    case Kind::float32:
+      return "float32";
+    case Kind::quantized:
+      return std::to_string(quantization_.bits) + "-bit quantization";
   }
   return "";
 }
@@ -113,7 +120,9 @@ double CoordinateGrid::dequantize(int axis, std::int64_t q) const {
 std::int64_t CoordinateGrid::nearest_level(int axis, double x) const {
   const double origin = quantization_.origin[static_cast<std::size_t>(axis)];
   const double guess = std::round((x - origin) / static_cast<double>(delta_));
-  const auto clamp = [&](double q) { return static_cast<std::int64_t>(std::clamp(q, 0.0, double(max_level_))); };
+  const auto clamp = [&](double q) {
+    return static_cast<std::int64_t>(std::clamp(q, 0.0, double(max_level_)));
+  };
   std::int64_t best = clamp(guess);
   double best_distance = std::abs(dequantize(axis, best) - x);
   // The float arithmetic can put the nearest value one level off the guess.
@@ -129,9 +138,12 @@ std::int64_t CoordinateGrid::nearest_level(int axis, double x) const {
 
 double CoordinateGrid::nearest(int axis, double x) const {
   switch (kind_) {
-    case Kind::doubles: return x;
-    case Kind::float32: return nearest_float(x);
-    case Kind::quantized: return dequantize(axis, nearest_level(axis, x));
+    case Kind::doubles:
+      return x;
+    case Kind::float32:
+      return nearest_float(x);
+    case Kind::quantized:
+      return dequantize(axis, nearest_level(axis, x));
   }
   return x;
 }
@@ -148,8 +160,10 @@ Vec3d CoordinateGrid::nearest(const Vec3d& p) const {
 
 double CoordinateGrid::step(int axis, double g, int steps) const {
   switch (kind_) {
-    case Kind::doubles: return double_steps(g, steps);
-    case Kind::float32: return float_steps(g, steps);
+    case Kind::doubles:
+      return double_steps(g, steps);
+    case Kind::float32:
+      return float_steps(g, steps);
     case Kind::quantized: {
       const std::int64_t q = std::clamp(nearest_level(axis, g) + steps, std::int64_t{0}, max_level_);
       return dequantize(axis, q);

@@ -53,7 +53,8 @@ std::vector<char> first_copies(const std::vector<Triangle>& faces) {
 
 // Per component representative: every face is there in both orientations,
 // and the first copies close up (every edge used an even number of times).
-std::vector<char> closed_double_sided(const std::vector<Triangle>& faces, const std::vector<std::size_t>& component,
+std::vector<char> closed_double_sided(const std::vector<Triangle>& faces,
+                                      const std::vector<std::size_t>& component,
                                       const std::vector<char>& first) {
   std::map<Key, std::array<std::size_t, 2>> orientations;  // per vertex triple: copies along, against
   for (const Triangle& t : faces) ++orientations[sorted(t)][along_sorted(t) ? 0 : 1];
@@ -78,7 +79,8 @@ double signed_volume(const TriangleSoup& soup, const std::vector<std::size_t>& f
   double volume = 0.0;
   for (std::size_t f : faces) {
     const Triangle& t = soup.triangles[f];
-    volume += (soup.positions[t[0]] - centre).dot((soup.positions[t[1]] - centre).cross(soup.positions[t[2]] - centre));
+    volume += (soup.positions[t[0]] - centre)
+                  .dot((soup.positions[t[1]] - centre).cross(soup.positions[t[2]] - centre));
   }
   return volume;
 }
@@ -116,8 +118,10 @@ std::size_t make_double_sided_components_one_sided(TriangleSoup& soup) {
   std::vector<std::size_t> one_sided;  // the first copies of eligible components
   for (std::size_t f = 0; f < n; ++f) {
     if (!eligible[component[f]]) continue;
-    if (first[f]) one_sided.push_back(f);
-    else keep[f] = 0;
+    if (first[f])
+      one_sided.push_back(f);
+    else
+      keep[f] = 0;
   }
   const std::size_t dropped = n - static_cast<std::size_t>(std::count(keep.begin(), keep.end(), 1));
   if (dropped == 0) return 0;

@@ -40,11 +40,13 @@ ToTriMeshResult to_trimesh(const TriangleSoup& soup) {
   mesh.reserve(soup.positions.size(), 3 * soup.triangles.size() / 2, soup.triangles.size());
   std::vector<TriMesh::VertexHandle> handles;
   handles.reserve(soup.positions.size());
-  for (const Vec3d& p : soup.positions) handles.push_back(mesh.add_vertex(TriMesh::Point(p.x(), p.y(), p.z())));
+  for (const Vec3d& p : soup.positions)
+    handles.push_back(mesh.add_vertex(TriMesh::Point(p.x(), p.y(), p.z())));
   for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
     const Triangle& t = soup.triangles[f];
     const TriMesh::VertexHandle a = handles[t[0]], b = handles[t[1]], c = handles[t[2]];
-    if (!can_add_face(mesh, a, b, c) || !mesh.add_face(a, b, c).is_valid()) result.rejected_triangles.push_back(f);
+    if (!can_add_face(mesh, a, b, c) || !mesh.add_face(a, b, c).is_valid())
+      result.rejected_triangles.push_back(f);
   }
   return result;
 }

@@ -32,7 +32,8 @@ void TriangleSoup::append(const TriangleSoup& other) {
   append_attribute(uvs, other.uvs, first || (has_uvs() && other.has_uvs()));
   append_attribute(colors, other.colors, first || (has_colors() && other.has_colors()));
   positions.insert(positions.end(), other.positions.begin(), other.positions.end());
-  for (const Triangle& t : other.triangles) triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  for (const Triangle& t : other.triangles)
+    triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
 
   if (has_face_regions() || other.has_face_regions()) {
     face_regions.resize(old_triangles, 0);
@@ -41,8 +42,7 @@ void TriangleSoup::append(const TriangleSoup& other) {
     else
       face_regions.resize(triangles.size(), 0);
   }
-  if (region_names.size() < other.region_names.size())
-    region_names.resize(other.region_names.size());
+  if (region_names.size() < other.region_names.size()) region_names.resize(other.region_names.size());
   for (std::size_t i = 0; i < other.region_names.size(); ++i)
     if (region_names[i].empty()) region_names[i] = other.region_names[i];
 }

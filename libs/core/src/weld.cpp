@@ -39,7 +39,8 @@ TriangleSoup weld_identical_vertices(const TriangleSoup& soup) {
     remap[i] = it->second;
   }
   welded.triangles.reserve(soup.triangles.size());
-  for (const Triangle& t : soup.triangles) welded.triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
+  for (const Triangle& t : soup.triangles)
+    welded.triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
   return welded;
 }
 

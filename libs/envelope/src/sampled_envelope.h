@@ -30,7 +30,8 @@ class SampledEnvelope final : public Envelope {
   // The same, trying only the triangles that gave the corners' samples: a
   // few distances instead of a search (for the pieces of a bisection).
   template <std::size_t N>
-  bool near_a_sampled_triangle(const std::array<Vec3d, N>& corners, const std::array<Sample, N>& samples) const;
+  bool near_a_sampled_triangle(const std::array<Vec3d, N>& corners,
+                               const std::array<Sample, N>& samples) const;
 
   bool adaptive_segment(const Vec3d& a, const Vec3d& b, Sample da, Sample db) const;
   bool adaptive_triangle(const std::array<Vec3d, 3>& v, const std::array<Sample, 3>& d) const;
@@ -40,8 +41,8 @@ class SampledEnvelope final : public Envelope {
 
   spatial::AabbTree tree_;
   double epsilon_ = 0.0;
-  double step_ = 0.0;   // d_k = d / k
-  double limit_ = 0.0;  // epsilon minus the rounding margin
+  double step_ = 0.0;              // d_k = d / k
+  double limit_ = 0.0;             // epsilon minus the rounding margin
   double largest_triangle_ = 0.0;  // longest edge of all input triangles
   SamplingPattern pattern_ = SamplingPattern::Lattice;
 };

@@ -63,8 +63,9 @@ BorderLoop make_loop(const std::vector<BorderEdge>& edges, std::vector<Step> ste
 // whose faces disagree on orientation still closes. Returns the number of
 // edges left on a path that cannot close (a vertex with an odd number of
 // border edges).
-std::size_t walk_loops(std::vector<BorderEdge>& edges, const std::unordered_multimap<Index, std::size_t>& incident,
-                       std::size_t start, std::vector<BorderLoop>& loops) {
+std::size_t walk_loops(std::vector<BorderEdge>& edges,
+                       const std::unordered_multimap<Index, std::size_t>& incident, std::size_t start,
+                       std::vector<BorderLoop>& loops) {
   std::vector<Step> path;
   std::unordered_map<Index, std::size_t> on_path;  // vertex -> position of the step leaving it
   Step step{start, false};
@@ -77,7 +78,8 @@ std::size_t walk_loops(std::vector<BorderEdge>& edges, const std::unordered_mult
     auto back = on_path.find(head);
     if (back != on_path.end()) {
       const std::size_t first = back->second;
-      for (std::size_t k = first; k < path.size(); ++k) on_path.erase(start_of(edges[path[k].edge], path[k].reversed));
+      for (std::size_t k = first; k < path.size(); ++k)
+        on_path.erase(start_of(edges[path[k].edge], path[k].reversed));
       loops.push_back(make_loop(edges, std::vector<Step>(path.begin() + std::ptrdiff_t(first), path.end())));
       path.resize(first);
       if (path.empty()) return 0;

@@ -4,13 +4,13 @@
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_face_base_with_info_2.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Polygon_mesh_processing/fair.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/refine.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
 #include <array>
@@ -40,7 +40,8 @@ struct LoopFace {
 // has points of its own).
 using CdtVertexBase = CGAL::Triangulation_vertex_base_with_info_2<Index, Kernel>;
 using CdtFaceBase =
-    CGAL::Constrained_triangulation_face_base_2<Kernel, CGAL::Triangulation_face_base_with_info_2<int, Kernel>>;
+    CGAL::Constrained_triangulation_face_base_2<Kernel,
+                                                CGAL::Triangulation_face_base_with_info_2<int, Kernel>>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
     Kernel, CGAL::Triangulation_data_structure_2<CdtVertexBase, CdtFaceBase>, CGAL::Exact_predicates_tag>;
 
@@ -89,7 +90,8 @@ std::vector<Triangle> triangulate_with_islands(const HoleNeighbourhood& hole) {
   mark_nesting(cdt);
   std::vector<Triangle> faces;
   for (Cdt::Face_handle f : cdt.finite_face_handles())
-    if (f->info() % 2 == 1) faces.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+    if (f->info() % 2 == 1)
+      faces.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
   return faces;
 }
 
@@ -99,32 +101,37 @@ std::optional<Mesh> as_mesh(const HoleNeighbourhood& hole, const std::vector<Tri
 auto triangulation_parameters(const HoleNeighbourhood& hole, Triangulator triangulator) {
   return CGAL::parameters::use_delaunay_triangulation(triangulator != Triangulator::full_search)
       .use_2d_constrained_delaunay_triangulation(triangulator == Triangulator::plane_2d)
-      .do_not_use_cubic_algorithm(triangulator != Triangulator::full_search && hole.loop_size > kCubicSearchMaxLoop);
+      .do_not_use_cubic_algorithm(triangulator != Triangulator::full_search &&
+                                  hole.loop_size > kCubicSearchMaxLoop);
 }
 
 // The loop triangulated as a hole of the ring's mesh, so that no diagonal
 // repeats an edge the surface already has (CGAL checks the mesh's edges);
 // nothing when the ring is not a valid polygon mesh or the loop's first
 // edge is not on its border.
-std::optional<std::vector<Triangle>> triangulate_in_ring(const HoleNeighbourhood& hole, Triangulator triangulator) {
+std::optional<std::vector<Triangle>> triangulate_in_ring(const HoleNeighbourhood& hole,
+                                                         Triangulator triangulator) {
   std::optional<Mesh> ring = as_mesh(hole, {});
   if (!ring) return std::nullopt;
   const auto h = CGAL::halfedge(Mesh::Vertex_index(0), Mesh::Vertex_index(1), *ring);
   if (!h.second || !ring->is_border(h.first)) return std::nullopt;
   std::vector<Mesh::Face_index> added;
-  PMP::triangulate_hole(*ring, h.first, std::back_inserter(added), triangulation_parameters(hole, triangulator));
+  PMP::triangulate_hole(*ring, h.first, std::back_inserter(added),
+                        triangulation_parameters(hole, triangulator));
   std::vector<Triangle> faces;
   for (Mesh::Face_index f : added) {
     Triangle t{};
     int k = 0;
-    for (Mesh::Vertex_index v : CGAL::vertices_around_face(ring->halfedge(f), *ring)) t[k++] = Index(std::size_t(v));
+    for (Mesh::Vertex_index v : CGAL::vertices_around_face(ring->halfedge(f), *ring))
+      t[k++] = Index(std::size_t(v));
     faces.push_back(t);
   }
   return faces;
 }
 
 std::vector<Triangle> triangulate_loop(const HoleNeighbourhood& hole, Triangulator triangulator) {
-  if (std::optional<std::vector<Triangle>> in_ring = triangulate_in_ring(hole, triangulator); in_ring && !in_ring->empty())
+  if (std::optional<std::vector<Triangle>> in_ring = triangulate_in_ring(hole, triangulator);
+      in_ring && !in_ring->empty())
     return *in_ring;
   std::vector<Point> points, third;
   for (std::size_t i = 0; i < hole.loop_size; ++i) {
@@ -132,7 +139,8 @@ std::vector<Triangle> triangulate_loop(const HoleNeighbourhood& hole, Triangulat
     third.push_back(to_point(hole.opposite[i]));
   }
   std::vector<LoopFace> faces;
-  PMP::triangulate_hole_polyline(points, third, std::back_inserter(faces), triangulation_parameters(hole, triangulator));
+  PMP::triangulate_hole_polyline(points, third, std::back_inserter(faces),
+                                 triangulation_parameters(hole, triangulator));
   std::vector<Triangle> out;
   for (const LoopFace& f : faces) out.push_back(f.corners);
   return out;
@@ -163,7 +171,8 @@ std::optional<Mesh> as_mesh(const HoleNeighbourhood& hole, const std::vector<Tri
   if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) return std::nullopt;
   Mesh mesh;
   PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
-  if (mesh.number_of_vertices() != points.size() || mesh.number_of_faces() != polygons.size()) return std::nullopt;
+  if (mesh.number_of_vertices() != points.size() || mesh.number_of_faces() != polygons.size())
+    return std::nullopt;
   for (std::size_t i = 0; i < points.size(); ++i)
     if (mesh.point(Mesh::Vertex_index(Index(i))) != points[i]) return std::nullopt;
   return mesh;
@@ -190,7 +199,8 @@ std::optional<Patch> extract_patch(const Mesh& mesh, const HoleNeighbourhood& ho
   for (Mesh::Face_index f : mesh.faces()) {
     Triangle t{};
     int k = 0;
-    for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) t[k++] = Index(std::size_t(v));
+    for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+      t[k++] = Index(std::size_t(v));
     if (std::size_t(f) < hole.ring.size()) {
       const Triangle& r = hole.ring[std::size_t(f)];
       if (std::is_permutation(t.begin(), t.end(), r.begin())) continue;
@@ -206,8 +216,8 @@ std::optional<Patch> extract_patch(const Mesh& mesh, const HoleNeighbourhood& ho
 }  // namespace
 
 std::optional<Patch> make_patch(const HoleNeighbourhood& hole, const PatchMethod& method) {
-  std::vector<Triangle> faces =
-      hole.island_sizes.empty() ? triangulate_loop(hole, method.triangulator) : triangulate_with_islands(hole);
+  std::vector<Triangle> faces = hole.island_sizes.empty() ? triangulate_loop(hole, method.triangulator)
+                                                          : triangulate_with_islands(hole);
   if (faces.empty()) return std::nullopt;
   orient_along_loop(faces);
   if (!method.refine) return Patch{{}, std::move(faces)};

@@ -106,7 +106,8 @@ std::string FilledSurface::intersection_refusal(const GlobalPatch& patch) const 
     for (std::size_t j = 0; j < i; ++j) {
       if (!boxes_overlap(patch_boxes[i], patch_boxes[j])) continue;
       const Triangle& s = patch.faces[j];
-      if (intersect_triangles(p, q, r, position(s[0], patch), position(s[1], patch), position(s[2], patch)).improper())
+      if (intersect_triangles(p, q, r, position(s[0], patch), position(s[1], patch), position(s[2], patch))
+              .improper())
         return "the patch meets itself";
     }
   }
@@ -121,24 +122,25 @@ std::string FilledSurface::refusal(const GlobalPatch& patch) const {
 
 bool FilledSurface::meets_itself() const {
   std::atomic<bool> met{false};
-  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, std::uint32_t(soup_.triangles.size()), 256),
-                    [&](const tbb::blocked_range<std::uint32_t>& range) {
-                      std::vector<std::uint32_t> near;
-                      for (std::uint32_t f = range.begin(); f != range.end() && !met; ++f) {
-                        const Triangle& t = soup_.triangles[f];
-                        const Vec3d &p = soup_.positions[t[0]], &q = soup_.positions[t[1]], &r = soup_.positions[t[2]];
-                        if (repeats_a_vertex(t) || collinear(p, q, r)) continue;
-                        const Box b = box_of(p, q, r);
-                        boxes_.query(b.lo, b.hi, near);
-                        for (std::uint32_t g : near) {
-                          if (g <= f) continue;
-                          const Triangle& s = soup_.triangles[g];
-                          const Vec3d &a = soup_.positions[s[0]], &c = soup_.positions[s[1]], &d = soup_.positions[s[2]];
-                          if (collinear(a, c, d)) continue;
-                          if (intersect_triangles(p, q, r, a, c, d).improper()) met = true;
-                        }
-                      }
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<std::uint32_t>(0, std::uint32_t(soup_.triangles.size()), 256),
+      [&](const tbb::blocked_range<std::uint32_t>& range) {
+        std::vector<std::uint32_t> near;
+        for (std::uint32_t f = range.begin(); f != range.end() && !met; ++f) {
+          const Triangle& t = soup_.triangles[f];
+          const Vec3d &p = soup_.positions[t[0]], &q = soup_.positions[t[1]], &r = soup_.positions[t[2]];
+          if (repeats_a_vertex(t) || collinear(p, q, r)) continue;
+          const Box b = box_of(p, q, r);
+          boxes_.query(b.lo, b.hi, near);
+          for (std::uint32_t g : near) {
+            if (g <= f) continue;
+            const Triangle& s = soup_.triangles[g];
+            const Vec3d &a = soup_.positions[s[0]], &c = soup_.positions[s[1]], &d = soup_.positions[s[2]];
+            if (collinear(a, c, d)) continue;
+            if (intersect_triangles(p, q, r, a, c, d).improper()) met = true;
+          }
+        }
+      });
   return met;
 }
 

@@ -19,10 +19,14 @@ namespace mr::hole_fill {
 
 const char* to_string(HoleOutcome outcome) {
   switch (outcome) {
-    case HoleOutcome::filled: return "filled";
-    case HoleOutcome::too_long: return "too_long";
-    case HoleOutcome::too_wide: return "too_wide";
-    case HoleOutcome::failed: return "failed";
+    case HoleOutcome::filled:
+      return "filled";
+    case HoleOutcome::too_long:
+      return "too_long";
+    case HoleOutcome::too_wide:
+      return "too_wide";
+    case HoleOutcome::failed:
+      return "failed";
   }
   return "?";
 }
@@ -60,7 +64,8 @@ struct LocalHole {
   std::vector<Index> to_global;
 };
 
-LocalHole gather_neighbourhood(const TriangleSoup& soup, const VertexFaces& around, const Hole& hole, int rings) {
+LocalHole gather_neighbourhood(const TriangleSoup& soup, const VertexFaces& around, const Hole& hole,
+                               int rings) {
   const BorderLoop& loop = hole.outer;
   LocalHole local;
   std::unordered_map<Index, Index> to_local;
@@ -118,7 +123,8 @@ std::vector<PatchMethod> methods_to_try(const HoleFillOptions& o, const Hole& ho
   for (const PatchMethod& m : all) {
     if (m.triangulator == Triangulator::full_search && loop_size > detail::kCubicSearchMaxLoop) continue;
     const bool seen = std::any_of(out.begin(), out.end(), [&](const PatchMethod& n) {
-      return n.triangulator == m.triangulator && n.refine == m.refine && (!m.refine || n.fairing == m.fairing);
+      return n.triangulator == m.triangulator && n.refine == m.refine &&
+             (!m.refine || n.fairing == m.fairing);
     });
     if (!seen) out.push_back(m);
   }
@@ -129,18 +135,21 @@ std::string method_name(const PatchMethod& m) {
   std::string name = m.triangulator == Triangulator::delaunay_3d   ? "liepa_delaunay"
                      : m.triangulator == Triangulator::full_search ? "liepa_full"
                                                                    : "plane_cdt";
-  if (m.refine) name += m.fairing == Fairing::none ? "+refine" : "+refine+fair" + std::to_string(int(m.fairing));
+  if (m.refine)
+    name += m.fairing == Fairing::none ? "+refine" : "+refine+fair" + std::to_string(int(m.fairing));
   return name;
 }
 
 // The patch in surface indices, its new vertices on the output grid.
-GlobalPatch to_global(const detail::Patch& patch, const LocalHole& local, Index first_new, const CoordinateGrid& grid) {
+GlobalPatch to_global(const detail::Patch& patch, const LocalHole& local, Index first_new,
+                      const CoordinateGrid& grid) {
   GlobalPatch out;
   const Index local_count = Index(local.to_global.size());
   for (const Vec3d& p : patch.new_positions) out.new_positions.push_back(grid.nearest(p));
   for (const Triangle& t : patch.faces) {
     Triangle g{};
-    for (int i = 0; i < 3; ++i) g[i] = t[i] < local_count ? local.to_global[t[i]] : first_new + (t[i] - local_count);
+    for (int i = 0; i < 3; ++i)
+      g[i] = t[i] < local_count ? local.to_global[t[i]] : first_new + (t[i] - local_count);
     out.faces.push_back(g);
   }
   return out;
@@ -207,7 +216,8 @@ HoleWork make_work(const TriangleSoup& welded, Hole hole, const HoleFillOptions&
 
 // The neighbourhood, the methods and the first method's patch: the part
 // of the work that needs no other hole (run in parallel).
-void prepare(HoleWork& w, const TriangleSoup& welded, const VertexFaces& around, const HoleFillOptions& options) {
+void prepare(HoleWork& w, const TriangleSoup& welded, const VertexFaces& around,
+             const HoleFillOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   w.local = gather_neighbourhood(welded, around, w.hole, int(options.fairing) + 1);
   w.methods = methods_to_try(options, w.hole);
@@ -242,7 +252,8 @@ HoleFillResult fill_holes(const TriangleSoup& input, const HoleFillOptions& opti
     if (work[i].report.outcome == HoleOutcome::failed && !work[i].hole.islands.empty()) {
       Hole joined = std::move(work[i].hole);
       work.push_back(make_work(welded, {std::move(joined.outer), {}}, options));
-      for (BorderLoop& island : joined.islands) work.push_back(make_work(welded, {std::move(island), {}}, options));
+      for (BorderLoop& island : joined.islands)
+        work.push_back(make_work(welded, {std::move(island), {}}, options));
       continue;
     }
     result.holes.push_back(work[i].report);

@@ -48,7 +48,8 @@ std::string defects_other_than_holes(const TriangleSoup& input) {
   TriangleSoup welded = weld_identical_vertices(input);
   if (std::string why = face_refusal(welded); !why.empty()) return why;
   if (std::string why = edge_refusal(welded); !why.empty()) return why;
-  if (detail::FilledSurface(std::move(welded)).meets_itself()) return "faces meet away from their shared vertices and edges";
+  if (detail::FilledSurface(std::move(welded)).meets_itself())
+    return "faces meet away from their shared vertices and edges";
   return {};
 }
 

@@ -12,7 +12,9 @@ namespace mr::hole_fill::detail {
 inline std::uint64_t directed_edge_key(Index a, Index b) { return (std::uint64_t(a) << 32) | b; }
 
 /// The edge {a, b}, either way round, as one integer.
-inline std::uint64_t edge_key(Index a, Index b) { return a < b ? directed_edge_key(a, b) : directed_edge_key(b, a); }
+inline std::uint64_t edge_key(Index a, Index b) {
+  return a < b ? directed_edge_key(a, b) : directed_edge_key(b, a);
+}
 
 /// A face naming one vertex twice (no edge structure; skipped everywhere).
 inline bool repeats_a_vertex(const Triangle& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }

@@ -1,5 +1,5 @@
-#include <mr/io/atomic_file.h>
 #include <mr/core/errors.h>
+#include <mr/io/atomic_file.h>
 
 #include <atomic>
 #include <chrono>
@@ -17,8 +17,9 @@ std::filesystem::path temporary_sibling(const std::filesystem::path& destination
   std::string name(".");
   name += destination.stem().string();
   // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string.
-  for (const std::string& piece : {std::string(".tmp"), std::to_string(::getpid()), std::string("-"),
-                                   std::to_string(counter++), std::string("-"), std::to_string(tick % 100000)})
+  for (const std::string& piece :
+       {std::string(".tmp"), std::to_string(::getpid()), std::string("-"), std::to_string(counter++),
+        std::string("-"), std::to_string(tick % 100000)})
     name += piece;
   name += destination.extension().string();
   return destination.parent_path() / name;
@@ -32,10 +33,12 @@ void write_atomically(const std::filesystem::path& destination,
   std::error_code ignored;
   try {
     write(temp);
-    if (!std::filesystem::exists(temp)) throw RunError("writing " + destination.string() + " produced no file");
+    if (!std::filesystem::exists(temp))
+      throw RunError("writing " + destination.string() + " produced no file");
     std::error_code ec;
     std::filesystem::rename(temp, destination, ec);
-    if (ec) throw RunError("cannot move the output into place at " + destination.string() + ": " + ec.message());
+    if (ec)
+      throw RunError("cannot move the output into place at " + destination.string() + ": " + ec.message());
   } catch (...) {
     std::filesystem::remove(temp, ignored);
     throw;

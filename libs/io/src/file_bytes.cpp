@@ -32,8 +32,9 @@ std::string_view ByteReader::take(std::size_t count, const char* what) {
 }
 
 void ByteReader::seek(std::size_t position, const char* what) {
-  if (position > size_) fail(std::string(what) + " points to offset " + std::to_string(position) +
-                             " past the end of the file (" + std::to_string(size_) + " bytes)");
+  if (position > size_)
+    fail(std::string(what) + " points to offset " + std::to_string(position) + " past the end of the file (" +
+         std::to_string(size_) + " bytes)");
   pos_ = position;
 }
 

@@ -1,7 +1,7 @@
-#include <mr/io/mesh_io.h>
-#include <mr/io/atomic_file.h>
 #include <mr/core/boundary.h>
 #include <mr/core/errors.h>
+#include <mr/io/atomic_file.h>
+#include <mr/io/mesh_io.h>
 
 #include <new>
 #include <system_error>
@@ -14,7 +14,8 @@ void check_readable(const std::filesystem::path& path) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (ec || !std::filesystem::exists(status)) throw InputError(path.string(), "no such file");
-  if (std::filesystem::is_directory(status)) throw InputError(path.string(), "is a directory, not a mesh file");
+  if (std::filesystem::is_directory(status))
+    throw InputError(path.string(), "is a directory, not a mesh file");
   const auto size = std::filesystem::file_size(path, ec);
   if (ec) throw InputError(path.string(), "cannot read the file size: " + ec.message());
   if (size == 0) throw InputError(path.string(), "the file is empty");

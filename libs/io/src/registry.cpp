@@ -1,5 +1,5 @@
-#include <mr/io/registry.h>
 #include <mr/core/errors.h>
+#include <mr/io/registry.h>
 
 #include <algorithm>
 #include <cctype>

@@ -6,9 +6,8 @@
 
 namespace mr {
 
-ExactPoint3 intersect_segment_plane(const HybridPoint& a, const HybridPoint& b,
-                                    const HybridPoint& p, const HybridPoint& q,
-                                    const HybridPoint& r) {
+ExactPoint3 intersect_segment_plane(const HybridPoint& a, const HybridPoint& b, const HybridPoint& p,
+                                    const HybridPoint& q, const HybridPoint& r) {
   // On integers over common denominators (detail::Homogeneous): a chain of
   // mpq operations reduces every intermediate by a gcd; this reduces the
   // three coordinates once, at the end.
@@ -39,10 +38,8 @@ ExactPoint3 intersect_segment_plane(const HybridPoint& a, const HybridPoint& b,
   return {coordinate(ha.x, hb.x), coordinate(ha.y, hb.y), coordinate(ha.z, hb.z)};
 }
 
-std::optional<ExactPoint3> intersect_segment_triangle_point(const HybridPoint& a,
-                                                            const HybridPoint& b,
-                                                            const HybridPoint& p,
-                                                            const HybridPoint& q,
+std::optional<ExactPoint3> intersect_segment_triangle_point(const HybridPoint& a, const HybridPoint& b,
+                                                            const HybridPoint& p, const HybridPoint& q,
                                                             const HybridPoint& r) {
   const SegmentTriangleHit hit = intersect_segment_triangle(a, b, p, q, r);
   if (hit.kind != SegmentTriangleKind::point) return std::nullopt;

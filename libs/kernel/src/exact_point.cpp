@@ -14,9 +14,9 @@ namespace {
 
 bool has_even_mantissa(double d) { return (std::bit_cast<std::uint64_t>(d) & 1u) == 0; }
 
-mpq_class determinant3(const mpq_class& ux, const mpq_class& uy, const mpq_class& uz,
-                       const mpq_class& vx, const mpq_class& vy, const mpq_class& vz,
-                       const mpq_class& wx, const mpq_class& wy, const mpq_class& wz) {
+mpq_class determinant3(const mpq_class& ux, const mpq_class& uy, const mpq_class& uz, const mpq_class& vx,
+                       const mpq_class& vy, const mpq_class& vz, const mpq_class& wx, const mpq_class& wy,
+                       const mpq_class& wz) {
   return ux * (vy * wz - vz * wy) + uy * (vz * wx - vx * wz) + uz * (vx * wy - vy * wx);
 }
 
@@ -88,8 +88,7 @@ std::size_t bit_size(const ExactPoint3& p) {
   return bits;
 }
 
-int orient3d(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c,
-             const ExactPoint3& d) {
+int orient3d(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c, const ExactPoint3& d) {
   const detail::Homogeneous ha = detail::homogeneous(a);
   const auto u = detail::scaled_difference(detail::homogeneous(b), ha);
   const auto v = detail::scaled_difference(detail::homogeneous(c), ha);
@@ -99,8 +98,7 @@ int orient3d(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c,
   return sgn(det);
 }
 
-int orient2d_projected(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c,
-                       int axis) {
+int orient2d_projected(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c, int axis) {
   const int i = axis == 0 ? 1 : 0;
   const int j = axis == 2 ? 1 : 2;
   const detail::Homogeneous ha = detail::homogeneous(a);
@@ -110,8 +108,8 @@ int orient2d_projected(const ExactPoint3& a, const ExactPoint3& b, const ExactPo
   return sgn(det);
 }
 
-int insphere(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c,
-             const ExactPoint3& d, const ExactPoint3& e) {
+int insphere(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c, const ExactPoint3& d,
+             const ExactPoint3& e) {
   // Rows (p - e, |p - e|^2) for p = a, b, c, d; expanded along the lift column.
   // That determinant is negative when e is inside and orient3d(a, b, c, d) > 0,
   // hence the final sign flip.
@@ -126,8 +124,8 @@ int insphere(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c,
   auto minor = [&](int r0, int r1, int r2) {
     return determinant3(x[r0], y[r0], z[r0], x[r1], y[r1], z[r1], x[r2], y[r2], z[r2]);
   };
-  const mpq_class det = -lift[0] * minor(1, 2, 3) + lift[1] * minor(0, 2, 3) -
-                        lift[2] * minor(0, 1, 3) + lift[3] * minor(0, 1, 2);
+  const mpq_class det = -lift[0] * minor(1, 2, 3) + lift[1] * minor(0, 2, 3) - lift[2] * minor(0, 1, 3) +
+                        lift[3] * minor(0, 1, 2);
   return -sgn(det);
 }
 

@@ -41,8 +41,7 @@ int certain_sign(const Interval& value) {
 int filtered_orient3d(const HybridPoint& a, const HybridPoint& b, const HybridPoint& c,
                       const HybridPoint& d) {
   const CGAL::Protect_FPU_rounding<true> upward;
-  const IntervalPoint ia = to_interval(a), ib = to_interval(b), ic = to_interval(c),
-                      id = to_interval(d);
+  const IntervalPoint ia = to_interval(a), ib = to_interval(b), ic = to_interval(c), id = to_interval(d);
   Interval u[3], v[3], w[3];
   for (int k = 0; k < 3; ++k) {
     u[k] = ib[k] - ia[k];
@@ -54,8 +53,7 @@ int filtered_orient3d(const HybridPoint& a, const HybridPoint& b, const HybridPo
   return certain_sign(det);
 }
 
-int filtered_orient2d(const HybridPoint& a, const HybridPoint& b, const HybridPoint& c, int i,
-                      int j) {
+int filtered_orient2d(const HybridPoint& a, const HybridPoint& b, const HybridPoint& c, int i, int j) {
   const CGAL::Protect_FPU_rounding<true> upward;
   const IntervalPoint ia = to_interval(a), ib = to_interval(b), ic = to_interval(c);
   const Interval det = (ib[i] - ia[i]) * (ic[j] - ia[j]) - (ib[j] - ia[j]) * (ic[i] - ia[i]);
@@ -75,16 +73,14 @@ bool operator==(const HybridPoint& a, const HybridPoint& b) {
   return a.to_exact() == b.to_exact();
 }
 
-int orient3d(const HybridPoint& a, const HybridPoint& b, const HybridPoint& c,
-             const HybridPoint& d) {
+int orient3d(const HybridPoint& a, const HybridPoint& b, const HybridPoint& c, const HybridPoint& d) {
   if (!a.exact && !b.exact && !c.exact && !d.exact) return orient3d(a.approx, b.approx, c.approx, d.approx);
   const int sign = filtered_orient3d(a, b, c, d);
   if (sign != kUncertain) return sign;
   return orient3d(a.to_exact(), b.to_exact(), c.to_exact(), d.to_exact());
 }
 
-int orient2d_projected(const HybridPoint& a, const HybridPoint& b, const HybridPoint& c,
-                       int axis) {
+int orient2d_projected(const HybridPoint& a, const HybridPoint& b, const HybridPoint& c, int axis) {
   if (!a.exact && !b.exact && !c.exact) return orient2d_projected(a.approx, b.approx, c.approx, axis);
   const int i = axis == 0 ? 1 : 0;
   const int j = axis == 2 ? 1 : 2;

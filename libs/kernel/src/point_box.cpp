@@ -13,7 +13,8 @@ using Interval = CGAL::Interval_nt<false>;  // rounding set once per function
 using IntervalPoint = std::array<Interval, 3>;
 
 IntervalPoint to_interval(const PointBox& box) {
-  return {Interval(box.lo.x(), box.hi.x()), Interval(box.lo.y(), box.hi.y()), Interval(box.lo.z(), box.hi.z())};
+  return {Interval(box.lo.x(), box.hi.x()), Interval(box.lo.y(), box.hi.y()),
+          Interval(box.lo.z(), box.hi.z())};
 }
 
 int certain_sign(const Interval& value) {
@@ -24,7 +25,8 @@ int certain_sign(const Interval& value) {
 }
 
 // Six times the signed volume of (p, q, r, x).
-Interval volume(const IntervalPoint& p, const IntervalPoint& q, const IntervalPoint& r, const IntervalPoint& x) {
+Interval volume(const IntervalPoint& p, const IntervalPoint& q, const IntervalPoint& r,
+                const IntervalPoint& x) {
   Interval u[3], v[3], w[3];
   for (int k = 0; k < 3; ++k) {
     u[k] = q[k] - p[k];

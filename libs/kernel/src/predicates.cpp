@@ -41,13 +41,12 @@ int orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
 }
 
 int incircle(const Vec2d& a, const Vec2d& b, const Vec2d& c, const Vec2d& d) {
-  return sign_of(
-      Epick::Side_of_oriented_circle_2()(to_cgal(a), to_cgal(b), to_cgal(c), to_cgal(d)));
+  return sign_of(Epick::Side_of_oriented_circle_2()(to_cgal(a), to_cgal(b), to_cgal(c), to_cgal(d)));
 }
 
 int insphere(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d, const Vec3d& e) {
-  return sign_of(Epick::Side_of_oriented_sphere_3()(to_cgal(a), to_cgal(b), to_cgal(c),
-                                                    to_cgal(d), to_cgal(e)));
+  return sign_of(
+      Epick::Side_of_oriented_sphere_3()(to_cgal(a), to_cgal(b), to_cgal(c), to_cgal(d), to_cgal(e)));
 }
 
 int orient2d_projected(const Vec3d& a, const Vec3d& b, const Vec3d& c, int axis) {

@@ -10,11 +10,16 @@ namespace mr {
 std::array<Index, 3> opposite_face(const Tet& tet, int corner) {
   // Each row is an even permutation of the tet that brings `corner` first.
   switch (corner) {
-    case 0: return {tet[1], tet[2], tet[3]};
-    case 1: return {tet[0], tet[3], tet[2]};
-    case 2: return {tet[3], tet[0], tet[1]};
-    case 3: return {tet[2], tet[1], tet[0]};
-    default: throw UsageError("opposite_face: corner must be 0..3, got " + std::to_string(corner));
+    case 0:
+      return {tet[1], tet[2], tet[3]};
+    case 1:
+      return {tet[0], tet[3], tet[2]};
+    case 2:
+      return {tet[3], tet[0], tet[1]};
+    case 3:
+      return {tet[2], tet[1], tet[0]};
+    default:
+      throw UsageError("opposite_face: corner must be 0..3, got " + std::to_string(corner));
   }
 }
 
@@ -34,8 +39,7 @@ bool try_round(HybridPoint& point, std::span<const OppositeFace> faces) {
   return true;
 }
 
-bool try_round_vertex(std::span<HybridPoint> positions, Index vertex,
-                      std::span<const Tet> incident_tets) {
+bool try_round_vertex(std::span<HybridPoint> positions, Index vertex, std::span<const Tet> incident_tets) {
   if (vertex >= positions.size()) {
     throw UsageError("try_round_vertex: vertex " + std::to_string(vertex) + " out of range");
   }

@@ -61,8 +61,7 @@ void locate_on_triangle(SegmentTriangleHit& hit, const std::array<int, 3>& edge_
 }
 
 template <class P>
-SegmentTriangleHit segment_triangle_impl(const P& a, const P& b, const P& p, const P& q,
-                                         const P& r) {
+SegmentTriangleHit segment_triangle_impl(const P& a, const P& b, const P& p, const P& q, const P& r) {
   SegmentTriangleHit hit;
   const PlaneEdgeSides sides = plane_edge_sides_impl(p, q, r, a, b);
   if (!sides.meets()) return hit;
@@ -92,8 +91,8 @@ PlaneEdgeSides plane_edge_sides(const HybridPoint& p, const HybridPoint& q, cons
   return plane_edge_sides_impl(p, q, r, a, b);
 }
 
-SegmentTriangleHit intersect_segment_triangle(const Vec3d& a, const Vec3d& b, const Vec3d& p,
-                                              const Vec3d& q, const Vec3d& r) {
+SegmentTriangleHit intersect_segment_triangle(const Vec3d& a, const Vec3d& b, const Vec3d& p, const Vec3d& q,
+                                              const Vec3d& r) {
   return segment_triangle_impl(a, b, p, q, r);
 }
 

@@ -175,26 +175,31 @@ TriangleTriangleHit triangles_impl(const P& p1, const P& q1, const P& r1, const 
   hit.shared_vertices = count_shared_vertices(t1, t2);
   using K = TriangleTriangleKind;
   switch (shape) {
-    case Shape::empty: hit.kind = K::disjoint; break;
-    case Shape::point: hit.kind = hit.shared_vertices > 0 ? K::shared_vertex : K::touching; break;
+    case Shape::empty:
+      hit.kind = K::disjoint;
+      break;
+    case Shape::point:
+      hit.kind = hit.shared_vertices > 0 ? K::shared_vertex : K::touching;
+      break;
     case Shape::segment:
       hit.kind = hit.shared_vertices == 2 ? K::shared_edge : coplanar ? K::coplanar_overlap : K::crossing;
       break;
-    case Shape::area: hit.kind = K::coplanar_overlap; break;
+    case Shape::area:
+      hit.kind = K::coplanar_overlap;
+      break;
   }
   return hit;
 }
 
 }  // namespace
 
-TriangleTriangleHit intersect_triangles(const Vec3d& p1, const Vec3d& q1, const Vec3d& r1,
-                                        const Vec3d& p2, const Vec3d& q2, const Vec3d& r2) {
+TriangleTriangleHit intersect_triangles(const Vec3d& p1, const Vec3d& q1, const Vec3d& r1, const Vec3d& p2,
+                                        const Vec3d& q2, const Vec3d& r2) {
   return triangles_impl(p1, q1, r1, p2, q2, r2);
 }
 
-TriangleTriangleHit intersect_triangles(const HybridPoint& p1, const HybridPoint& q1,
-                                        const HybridPoint& r1, const HybridPoint& p2,
-                                        const HybridPoint& q2, const HybridPoint& r2) {
+TriangleTriangleHit intersect_triangles(const HybridPoint& p1, const HybridPoint& q1, const HybridPoint& r1,
+                                        const HybridPoint& p2, const HybridPoint& q2, const HybridPoint& r2) {
   return triangles_impl(p1, q1, r1, p2, q2, r2);
 }
 

@@ -9,7 +9,7 @@ namespace mr::repair::detail {
 namespace {
 
 struct EdgeUse {
-  Index a, b;        // a < b
+  Index a, b;  // a < b
   std::size_t face;
   int corner_a, corner_b;  // corners of the face holding a and b
 };

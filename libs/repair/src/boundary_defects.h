@@ -11,7 +11,7 @@
 namespace mr::repair::detail {
 
 struct BoundaryDefects {
-  std::size_t boundary_edges = 0;                     ///< edges with one face
+  std::size_t boundary_edges = 0;                       ///< edges with one face
   std::vector<std::array<Index, 2>> nonmanifold_edges;  ///< more than two faces; sorted (a < b)
   /// Vertices whose faces form more than one fan (connected through edges
   /// at the vertex), increasing.

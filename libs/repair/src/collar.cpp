@@ -59,7 +59,9 @@ std::vector<Index> closed_ring(const TetMesh& mesh, DynamicStars& stars, Index v
   return ring;
 }
 
-bool positive(const std::vector<Vec3d>& p, const Tet& t) { return orient3d(p[t[0]], p[t[1]], p[t[2]], p[t[3]]) > 0; }
+bool positive(const std::vector<Vec3d>& p, const Tet& t) {
+  return orient3d(p[t[0]], p[t[1]], p[t[2]], p[t[3]]) > 0;
+}
 
 // Splits edge (v, x) at `point`: each tet around it becomes the part at x
 // (in its slot) and the part at v (appended). False, changing nothing,

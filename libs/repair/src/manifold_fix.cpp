@@ -34,7 +34,8 @@ std::vector<Index> defect_vertices(const BoundaryDefects& defects) {
 }
 
 std::size_t split_round(TetMesh& mesh, std::vector<TetState>& states, const FaceNeighbours& neighbours,
-                        const std::vector<FaceRef>& boundary, const BoundaryDefects& defects, double max_move) {
+                        const std::vector<FaceRef>& boundary, const BoundaryDefects& defects,
+                        double max_move) {
   const VertexStars stars(mesh.tets, mesh.positions.size());
   const spatial::BoxGrid grid = grid_of_boundary(mesh, boundary, max_move);
   const SplitContext context{mesh, neighbours, states, boundary, max_move, grid};
@@ -52,12 +53,16 @@ std::vector<Index> tets_around_edge(const VertexStars& stars, const std::array<I
 
 // The tets of `region` in the solid, and those the fix may add, each split
 // into face-connected classes.
-std::vector<std::vector<Index>> edit_candidates(const FaceNeighbours& neighbours, std::span<const TetState> states,
-                                                const std::vector<Index>& region, bool whole_solid_if_connected) {
+std::vector<std::vector<Index>> edit_candidates(const FaceNeighbours& neighbours,
+                                                std::span<const TetState> states,
+                                                const std::vector<Index>& region,
+                                                bool whole_solid_if_connected) {
   std::vector<Index> solid, rejected;
   for (Index t : region) {
-    if (in_solid(states[t])) solid.push_back(t);
-    else if (states[t] == TetState::rejected) rejected.push_back(t);
+    if (in_solid(states[t]))
+      solid.push_back(t);
+    else if (states[t] == TetState::rejected)
+      rejected.push_back(t);
   }
   auto candidates = face_connected_classes(neighbours, solid);
   if (whole_solid_if_connected && candidates.size() == 1) candidates.front() = solid;
@@ -73,8 +78,13 @@ class EditRound {
  public:
   EditRound(const TetMesh& mesh, std::vector<TetState>& states, const FaceNeighbours& neighbours,
             const envelope::Envelope* envelope, ManifoldFixStats& stats)
-      : mesh_(mesh), states_(states), neighbours_(neighbours), envelope_(envelope), stats_(stats),
-        stars_(mesh.tets, mesh.positions.size()), changed_(mesh.tets.size(), 0),
+      : mesh_(mesh),
+        states_(states),
+        neighbours_(neighbours),
+        envelope_(envelope),
+        stats_(stats),
+        stars_(mesh.tets, mesh.positions.size()),
+        changed_(mesh.tets.size(), 0),
         solid_tets_(std::count_if(states.begin(), states.end(), in_solid)) {}
 
   std::size_t run(const BoundaryDefects& defects) {
@@ -91,7 +101,8 @@ class EditRound {
   }
 
  private:
-  std::size_t edit_one_of(const std::vector<std::vector<Index>>& candidates, const std::vector<Index>& region) {
+  std::size_t edit_one_of(const std::vector<std::vector<Index>>& candidates,
+                          const std::vector<Index>& region) {
     if (std::any_of(region.begin(), region.end(), [&](Index t) { return changed_[t] != 0; })) return 0;
     const auto edit = choose_edit(mesh_, neighbours_, states_, solid_tets_, candidates, envelope_);
     if (!edit) return 0;
@@ -122,8 +133,8 @@ class EditRound {
 
 std::vector<TetState> initial_states(std::span<const std::uint8_t> inside, std::size_t tets) {
   if (!inside.empty() && inside.size() != tets)
-    throw UsageError("manifold fix: " + std::to_string(inside.size()) + " inside flags for " + std::to_string(tets) +
-                     " tets");
+    throw UsageError("manifold fix: " + std::to_string(inside.size()) + " inside flags for " +
+                     std::to_string(tets) + " tets");
   std::vector<TetState> states(tets, TetState::solid);
   for (std::size_t t = 0; t < inside.size(); ++t)
     if (inside[t] == 0) states[t] = TetState::rejected;
@@ -181,7 +192,8 @@ void fill_defect_stars(const TetMesh& mesh, std::vector<TetState>& states, Manif
           states[t] = TetState::solid;
           ++added;
         }
-    if (added == 0) throw RunError("repair: internal error: a defect vertex has every tet around it in the solid");
+    if (added == 0)
+      throw RunError("repair: internal error: a defect vertex has every tet around it in the solid");
     stats.fallback_added_tets += added;
   }
 }
@@ -189,7 +201,8 @@ void fill_defect_stars(const TetMesh& mesh, std::vector<TetState>& states, Manif
 }  // namespace
 
 ManifoldFixStats make_boundary_manifold(TetMesh& mesh, std::span<const std::uint8_t> inside,
-                                        const envelope::Envelope* envelope, const ManifoldFixOptions& options) {
+                                        const envelope::Envelope* envelope,
+                                        const ManifoldFixOptions& options) {
   if (!(options.max_move > 0.0) || !std::isfinite(options.max_move))
     throw UsageError("manifold fix: the largest vertex move must be finite and > 0");
   if (options.max_rounds < 1) throw UsageError("manifold fix: at least one round is needed");
@@ -214,7 +227,8 @@ ManifoldFixStats make_boundary_manifold(TetMesh& mesh, std::span<const std::uint
     // to bound the work: collars every round kept chasing the defects edits
     // leave at collar points (trimesh/soup ran out of rounds).
     if (options.collar_width > 0.0 && round < options.collar_rounds && !now.defects.manifold()) {
-      const std::size_t splits = build_collars(mesh, states, defect_vertices(now.defects), options.collar_width);
+      const std::size_t splits =
+          build_collars(mesh, states, defect_vertices(now.defects), options.collar_width);
       stats.collar_splits += splits;
       if (splits > 0) now = examine(mesh, states);  // the same defects, on more tets
     }

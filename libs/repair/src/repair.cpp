@@ -60,8 +60,9 @@ void check_arguments(const TetMesh& mesh, std::span<const std::uint8_t> inside, 
   if (!inside.empty() && inside.size() != mesh.tets.size())
     throw UsageError("repair: " + std::to_string(inside.size()) + " inside flags for " +
                      std::to_string(mesh.tets.size()) + " tets");
-  const bool any_inside =
-      inside.empty() ? !mesh.tets.empty() : std::any_of(inside.begin(), inside.end(), [](auto f) { return f != 0; });
+  const bool any_inside = inside.empty()
+                              ? !mesh.tets.empty()
+                              : std::any_of(inside.begin(), inside.end(), [](auto f) { return f != 0; });
   if (!any_inside) throw RunError("repair: no tet was kept: the input encloses no volume");
 }
 
@@ -113,9 +114,11 @@ RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::
     const Eigen::AlignedBox3d box = bounding_box(result.surface);
     FinerGrid finer;
     if (options.finer_output_grid)
-      finer = [&](const CoordinateGrid& refused) { return options.finer_output_grid(box.min(), box.max(), refused); };
-    GridRounding rounded =
-        round_to_grid_or_finer(result.surface, options.output_grid(box.min(), box.max()), finer, options.rounding);
+      finer = [&](const CoordinateGrid& refused) {
+        return options.finer_output_grid(box.min(), box.max(), refused);
+      };
+    GridRounding rounded = round_to_grid_or_finer(result.surface, options.output_grid(box.min(), box.max()),
+                                                  finer, options.rounding);
     result.grid = rounded.grid;
     result.rounding = rounded.stats;
     result.finer_grids = rounded.finer_grids;

@@ -8,10 +8,10 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <iterator>
 #include <limits>
 #include <span>
-#include <cmath>
 #include <tuple>
 #include <unordered_map>
 #include <vector>
@@ -30,7 +30,9 @@ struct Box {
     lo = lo.cwiseMin(b.lo);
     hi = hi.cwiseMax(b.hi);
   }
-  bool overlaps(const Box& b) const { return (lo.array() <= b.hi.array()).all() && (b.lo.array() <= hi.array()).all(); }
+  bool overlaps(const Box& b) const {
+    return (lo.array() <= b.hi.array()).all() && (b.lo.array() <= hi.array()).all();
+  }
 };
 
 // Positions equal as doubles (0.0 and -0.0 alike) get one key: a reader welds them.
@@ -58,9 +60,14 @@ Incidence incidence_of(const TriangleSoup& surface) {
 class VertexPlacement {
  public:
   VertexPlacement(TriangleSoup& surface, const CoordinateGrid& grid, const GridRoundingOptions& options)
-      : surface_(surface), grid_(grid), options_(options), original_(surface.positions),
-        incidence_(incidence_of(surface)), on_grid_(surface.positions.size(), 0),
-        collapsed_(surface.positions.size(), 0), removed_(surface.triangles.size(), 0) {
+      : surface_(surface),
+        grid_(grid),
+        options_(options),
+        original_(surface.positions),
+        incidence_(incidence_of(surface)),
+        on_grid_(surface.positions.size(), 0),
+        collapsed_(surface.positions.size(), 0),
+        removed_(surface.triangles.size(), 0) {
     for (std::size_t v = 0; v < original_.size(); ++v) occupied_.emplace(original_[v], static_cast<Index>(v));
     build_reach();
   }
@@ -69,8 +76,10 @@ class VertexPlacement {
     GridRoundingStats stats;
     stats.vertices = original_.size();
     for (std::size_t v = 0; v < original_.size(); ++v) {
-      if (grid_.holds(original_[v])) on_grid_[v] = 1;
-      else ++stats.moved;
+      if (grid_.holds(original_[v]))
+        on_grid_[v] = 1;
+      else
+        ++stats.moved;
     }
     std::vector<Index> left = unplaced();
     // Where no grid point around a vertex works (sheets closer than a grid
@@ -93,8 +102,8 @@ class VertexPlacement {
     if (!left.empty())
       throw RunError("cannot place " + std::to_string(left.size()) + " vertices on the " + grid_.name() +
                      " grid of the output without a self-intersection, a degenerate face or two vertices on "
-                     "one point (searched " + std::to_string(options_.max_steps * options_.max_stride) +
-                     " grid steps around each)");
+                     "one point (searched " +
+                     std::to_string(options_.max_steps * options_.max_stride) + " grid steps around each)");
     return stats;
   }
 
@@ -157,7 +166,8 @@ class VertexPlacement {
   bool collapse_onto_neighbour(Index v) {
     std::vector<Index> candidates = neighbours(v);
     std::stable_sort(candidates.begin(), candidates.end(), [&](Index a, Index b) {
-      return (surface_.positions[a] - original_[v]).squaredNorm() < (surface_.positions[b] - original_[v]).squaredNorm();
+      return (surface_.positions[a] - original_[v]).squaredNorm() <
+             (surface_.positions[b] - original_[v]).squaredNorm();
     });
     for (Index w : candidates)
       if (try_collapse(v, w)) return true;
@@ -195,7 +205,8 @@ class VertexPlacement {
       for (Index g : nearby) {
         if (removed_[g] || std::find(shared.begin(), shared.end(), g) != shared.end()) continue;
         const Triangle& t = surface_.triangles[g];
-        const std::array<Vec3d, 3> other{surface_.positions[t[0]], surface_.positions[t[1]], surface_.positions[t[2]]};
+        const std::array<Vec3d, 3> other{surface_.positions[t[0]], surface_.positions[t[1]],
+                                         surface_.positions[t[2]]};
         if (improper(moved[i], other)) return false;
       }
     }
@@ -219,7 +230,8 @@ class VertexPlacement {
       faces_.insert(f, face_reach_[f].lo, face_reach_[f].hi);
     }
     incidence_[v].clear();
-    if (auto it = occupied_.find(surface_.positions[v]); it != occupied_.end() && it->second == v) occupied_.erase(it);
+    if (auto it = occupied_.find(surface_.positions[v]); it != occupied_.end() && it->second == v)
+      occupied_.erase(it);
     on_grid_[v] = 1;
     collapsed_[v] = 1;
   }
@@ -388,7 +400,8 @@ class VertexPlacement {
   }
 
   void move(Index v, const Vec3d& c) {
-    if (auto it = occupied_.find(surface_.positions[v]); it != occupied_.end() && it->second == v) occupied_.erase(it);
+    if (auto it = occupied_.find(surface_.positions[v]); it != occupied_.end() && it->second == v)
+      occupied_.erase(it);
     surface_.positions[v] = c;
     occupied_[c] = v;
     on_grid_[v] = 1;
@@ -410,7 +423,8 @@ class VertexPlacement {
 
 }  // namespace
 
-GridRoundingStats round_to_grid(TriangleSoup& surface, const CoordinateGrid& grid, const GridRoundingOptions& options) {
+GridRoundingStats round_to_grid(TriangleSoup& surface, const CoordinateGrid& grid,
+                                const GridRoundingOptions& options) {
   if (options.max_steps < 0 || options.max_stride < 1 || options.max_passes < 1)
     throw UsageError("round_to_grid: max_steps must be >= 0, max_stride and max_passes >= 1");
   if (grid.is_identity()) {
@@ -420,7 +434,8 @@ GridRoundingStats round_to_grid(TriangleSoup& surface, const CoordinateGrid& gri
   }
   for (const Vec3d& p : surface.positions)
     if (!grid.nearest(p).allFinite())
-      throw RunError("a coordinate of the surface lies outside the range of the output's " + grid.name() + " grid");
+      throw RunError("a coordinate of the surface lies outside the range of the output's " + grid.name() +
+                     " grid");
   return VertexPlacement(surface, grid, options).run();
 }
 

@@ -6,13 +6,15 @@
 namespace mr::repair::detail {
 namespace {
 
-bool contains(const std::vector<Index>& sorted, Index t) { return std::binary_search(sorted.begin(), sorted.end(), t); }
+bool contains(const std::vector<Index>& sorted, Index t) {
+  return std::binary_search(sorted.begin(), sorted.end(), t);
+}
 
 // Is face k of tet t on the boundary once the edit is made? Removed tets
 // expose the faces they share with the solid; added tets bring the faces
 // they do not share with it.
-bool on_boundary_after(const FaceNeighbours& neighbours, std::span<const TetState> states, const SolidEdit& edit,
-                       Index t, int k) {
+bool on_boundary_after(const FaceNeighbours& neighbours, std::span<const TetState> states,
+                       const SolidEdit& edit, Index t, int k) {
   const Index other = neighbours.across(t, k);
   if (edit.add) return other == kNoTet || (!in_solid(states[other]) && !contains(edit.tets, other));
   return other != kNoTet && in_solid(states[other]) && !contains(edit.tets, other);

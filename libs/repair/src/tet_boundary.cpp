@@ -21,7 +21,8 @@ std::string label_list(const TetMesh& mesh) {
   labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
   constexpr std::size_t kShown = 20;
   std::string text;
-  for (std::size_t i = 0; i < labels.size() && i < kShown; ++i) text += (i ? ", " : "") + std::to_string(labels[i]);
+  for (std::size_t i = 0; i < labels.size() && i < kShown; ++i)
+    text += (i ? ", " : "") + std::to_string(labels[i]);
   if (labels.size() > kShown) text += ", ... (" + std::to_string(labels.size()) + " labels)";
   return text;
 }
@@ -49,10 +50,11 @@ TriangleSoup tet_mesh_boundary(const TetMesh& mesh, const BoundaryRequest& reque
       return extract_interfaces(positive);
     case BoundaryMode::label: {
       bool present = false;
-      for (std::size_t t = 0; t < mesh.tets.size() && !present; ++t) present = label_of(mesh, t) == request.label;
+      for (std::size_t t = 0; t < mesh.tets.size() && !present; ++t)
+        present = label_of(mesh, t) == request.label;
       if (!present)
-        throw UsageError("no tet has label " + std::to_string(request.label) + " (labels present: " +
-                         label_list(mesh) + ")");
+        throw UsageError("no tet has label " + std::to_string(request.label) +
+                         " (labels present: " + label_list(mesh) + ")");
       return extract_boundary(positive, [&](std::size_t t) { return label_of(mesh, t) == request.label; });
     }
     case BoundaryMode::all:

@@ -62,10 +62,14 @@ bool meet_properly(const std::vector<Vec3d>& p, const Triangle& f, const Triangl
   const TriangleTriangleHit hit = intersect_triangles(p[f[0]], p[f[1]], p[f[2]], p[g[0]], p[g[1]], p[g[2]]);
   const int shared = shared_indices(f, g);
   switch (hit.kind) {
-    case TriangleTriangleKind::disjoint: return true;
-    case TriangleTriangleKind::shared_vertex: return shared == 1 && hit.shared_vertices == 1;
-    case TriangleTriangleKind::shared_edge: return shared == 2;
-    default: return false;
+    case TriangleTriangleKind::disjoint:
+      return true;
+    case TriangleTriangleKind::shared_vertex:
+      return shared == 1 && hit.shared_vertices == 1;
+    case TriangleTriangleKind::shared_edge:
+      return shared == 2;
+    default:
+      return false;
   }
 }
 
@@ -77,7 +81,8 @@ bool new_faces_apart(const SplitContext& context, Index w, std::span<const Index
   for (Index t : tets)
     for (int k = 0; k < 4; ++k) {
       const Triangle f = tet_face(mesh.tets[t], k);
-      if (!on_boundary(context.neighbours, context.states, t, k) || std::find(f.begin(), f.end(), w) == f.end())
+      if (!on_boundary(context.neighbours, context.states, t, k) ||
+          std::find(f.begin(), f.end(), w) == f.end())
         continue;
       around.push_back({f, {t, k}});
       for (Index v : f) reach.add(mesh.positions[v]);
@@ -128,7 +133,8 @@ bool move_into_class(const SplitContext& context, Index w, std::span<const Index
 
 }  // namespace
 
-spatial::BoxGrid grid_of_boundary(const TetMesh& mesh, const std::vector<FaceRef>& boundary, double max_move) {
+spatial::BoxGrid grid_of_boundary(const TetMesh& mesh, const std::vector<FaceRef>& boundary,
+                                  double max_move) {
   std::vector<Box> boxes;
   boxes.reserve(boundary.size());
   Box all;
@@ -145,7 +151,8 @@ spatial::BoxGrid grid_of_boundary(const TetMesh& mesh, const std::vector<FaceRef
   if (boxes.empty()) return {};
   const double cell = std::max(2.0 * total_size / double(boxes.size()), 1e-300);
   spatial::BoxGrid grid(all.lo, cell);
-  for (std::size_t i = 0; i < boxes.size(); ++i) grid.insert(static_cast<std::uint32_t>(i), boxes[i].lo, boxes[i].hi);
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+    grid.insert(static_cast<std::uint32_t>(i), boxes[i].lo, boxes[i].hi);
   return grid;
 }
 

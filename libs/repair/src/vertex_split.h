@@ -11,7 +11,7 @@ namespace mr::repair::detail {
 
 struct SplitContext {
   TetMesh& mesh;
-  const FaceNeighbours& neighbours;    ///< of mesh.tets
+  const FaceNeighbours& neighbours;  ///< of mesh.tets
   /// One per tet of mesh.tets. A split locks out the rejected tets around
   /// the vertex: they still meet the split classes at the old position.
   std::vector<TetState>& states;

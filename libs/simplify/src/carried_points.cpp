@@ -45,7 +45,8 @@ std::vector<Vec3d> MeshState::points_carried_by(const std::vector<TriMesh::FaceH
 
 // The points on v0's faces, and v0 itself, must stay near the faces v1 has
 // after the collapse: the rewritten fan and v1's faces the collapse leaves.
-bool MeshState::collapse_keeps_carried_points(TriMesh::HalfedgeHandle h, const std::vector<NewFace>& faces) const {
+bool MeshState::collapse_keeps_carried_points(TriMesh::HalfedgeHandle h,
+                                              const std::vector<NewFace>& faces) const {
   const auto v0 = mesh_.from_vertex_handle(h);
   std::vector<Vec3d> points = points_carried_by(faces_around(mesh_, v0));
   points.push_back(point(v0));

@@ -49,7 +49,8 @@ class CollapseQueue {
     while (!heap_.empty()) {
       out = heap_.top();
       heap_.pop();
-      if (out.stamp == stamps_[out.halfedge] && state_.is_collapse_candidate(TriMesh::HalfedgeHandle(int(out.halfedge))))
+      if (out.stamp == stamps_[out.halfedge] &&
+          state_.is_collapse_candidate(TriMesh::HalfedgeHandle(int(out.halfedge))))
         return true;
     }
     return false;
@@ -86,8 +87,8 @@ std::vector<Candidate> pop_batch(const TriMesh& mesh, CollapseQueue& queue, std:
   return batch;
 }
 
-void requeue_around(const TriMesh& mesh, CollapseQueue& queue, const std::vector<TriMesh::VertexHandle>& support,
-                    TriMesh::VertexHandle v1) {
+void requeue_around(const TriMesh& mesh, CollapseQueue& queue,
+                    const std::vector<TriMesh::VertexHandle>& support, TriMesh::VertexHandle v1) {
   for (auto s : support)
     for (auto h : mesh.voh_range(s)) queue.push(h);
   for (auto h : mesh.vih_range(v1)) queue.push(h);

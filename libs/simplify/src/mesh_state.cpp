@@ -52,7 +52,8 @@ void MeshState::build_mesh(const TriangleSoup& welded) {
   std::sort(keys.begin(), keys.end());
   std::vector<std::size_t> first(n);  // per input face: the first face of its group
   for (std::size_t k = 0; k < n; ++k)
-    first[keys[k].second] = k > 0 && keys[k].first == keys[k - 1].first ? first[keys[k - 1].second] : keys[k].second;
+    first[keys[k].second] =
+        k > 0 && keys[k].first == keys[k - 1].first ? first[keys[k - 1].second] : keys[k].second;
   auto same_orientation = [](const Triangle& a, const Triangle& b) {
     for (int r = 0; r < 3; ++r)
       if (a[0] == b[r] && a[1] == b[(r + 1) % 3] && a[2] == b[(r + 2) % 3]) return true;
@@ -75,7 +76,8 @@ void MeshState::build_mesh(const TriangleSoup& welded) {
       (same_orientation(t, welded.triangles[g]) != bool(reversed[g]) ? c.along : c.against) += 1;
       continue;
     }
-    const TriMesh::VertexHandle a{static_cast<int>(t[0])}, b{static_cast<int>(t[1])}, c{static_cast<int>(t[2])};
+    const TriMesh::VertexHandle a{static_cast<int>(t[0])}, b{static_cast<int>(t[1])},
+        c{static_cast<int>(t[2])};
     TriMesh::FaceHandle added;
     if (can_add_face(mesh_, a, b, c)) {
       added = mesh_.add_face(a, b, c);
@@ -195,8 +197,10 @@ bool MeshState::same_copies_around(TriMesh::VertexHandle v) const {
   const Copies* first = nullptr;
   for (auto f : mesh_.vf_range(v)) {
     const Copies& c = copies_[f.idx()];
-    if (!first) first = &c;
-    else if (!(c == *first)) return false;
+    if (!first)
+      first = &c;
+    else if (!(c == *first))
+      return false;
   }
   return true;
 }
@@ -271,8 +275,10 @@ TriangleSoup MeshState::to_output() const {
     for (auto v : mesh_.fv_range(f)) t[k++] = output_index(v.idx());
     const Copies& c = copies_[f.idx()];
     const Triangle r{t[0], t[2], t[1]};
-    soup.triangles.insert(soup.triangles.end(), c.against_first ? c.against : c.along, c.against_first ? r : t);
-    soup.triangles.insert(soup.triangles.end(), c.against_first ? c.along : c.against, c.against_first ? t : r);
+    soup.triangles.insert(soup.triangles.end(), c.against_first ? c.against : c.along,
+                          c.against_first ? r : t);
+    soup.triangles.insert(soup.triangles.end(), c.against_first ? c.along : c.against,
+                          c.against_first ? t : r);
   }
   for (const Triangle& t : kept_aside_triangles_)
     soup.triangles.push_back({output_index(int(t[0])), output_index(int(t[1])), output_index(int(t[2]))});

@@ -1,7 +1,7 @@
 #pragma once
 // The working state of one simplification: the halfedge mesh of the manifold
-// part (copies of one triangle merged into one face that remembers them), which vertices must not move, the envelopes of the original input and
-// of its boundary curve, a grid of current faces (for the exact
+// part (copies of one triangle merged into one face that remembers them), which vertices must not move, the
+// envelopes of the original input and of its boundary curve, a grid of current faces (for the exact
 // self-intersection test), per-vertex quadrics (for the collapse cost) and
 // the vertices removed so far, each carried by the face nearest to it.
 // Checks are const and may run on many threads at once; operations are not.
@@ -91,7 +91,7 @@ class MeshState {
 
   struct NewFace {
     Corners corners;
-    Vec3d old_normal;             // of the face it replaces (zero if none or degenerate)
+    Vec3d old_normal;  // of the face it replaces (zero if none or degenerate)
   };
 
   Vec3d point(TriMesh::VertexHandle v) const;
@@ -131,7 +131,8 @@ class MeshState {
   bool collapse_keeps_carried_points(TriMesh::HalfedgeHandle h, const std::vector<NewFace>& faces) const;
   bool flip_keeps_carried_points(TriMesh::EdgeHandle e, const std::vector<NewFace>& faces) const;
   std::vector<std::uint32_t> take_carried_points(const std::vector<TriMesh::FaceHandle>& faces);
-  void carry_by_nearest(const std::vector<std::uint32_t>& points, const std::vector<TriMesh::FaceHandle>& faces);
+  void carry_by_nearest(const std::vector<std::uint32_t>& points,
+                        const std::vector<TriMesh::FaceHandle>& faces);
   // Signed volumes of the closed components (component_volumes.cpp).
   void build_component_volumes();
   double collapse_volume_change(TriMesh::HalfedgeHandle h) const;
@@ -146,13 +147,13 @@ class MeshState {
 
   TriMesh mesh_;
   DerivedTolerances tolerances_;
-  std::vector<Corners> kept_aside_;               // corners of faces OpenMesh rejected
-  std::vector<Triangle> kept_aside_triangles_;    // their welded indices
-  std::vector<Copies> copies_;                    // per mesh face
-  std::size_t duplicate_faces_ = 0;               // input faces that share a mesh face with an earlier one
-  std::vector<std::uint8_t> locked_;              // per vertex: never moved or flipped around
+  std::vector<Corners> kept_aside_;             // corners of faces OpenMesh rejected
+  std::vector<Triangle> kept_aside_triangles_;  // their welded indices
+  std::vector<Copies> copies_;                  // per mesh face
+  std::size_t duplicate_faces_ = 0;             // input faces that share a mesh face with an earlier one
+  std::vector<std::uint8_t> locked_;            // per vertex: never moved or flipped around
   std::unique_ptr<envelope::Envelope> envelope_;
-  std::unique_ptr<envelope::Envelope> fine_envelope_;  // stage 2: asked only where envelope_ refuses
+  std::unique_ptr<envelope::Envelope> fine_envelope_;      // stage 2: asked only where envelope_ refuses
   std::unique_ptr<envelope::Envelope> boundary_envelope_;  // null when the input has no boundary
   // Vertices never move, so a triangle's envelope verdict never changes; a
   // candidate is checked again every time its neighbourhood changes, mostly
@@ -161,12 +162,12 @@ class MeshState {
   mutable tbb::concurrent_unordered_map<SortedCorners, bool, SortedCornersHash> envelope_verdicts_;
   spatial::BoxGrid grid_;
   std::vector<Quadric> quadrics_;
-  std::vector<Vec3d> carried_positions_;                 // removed vertices
-  std::vector<std::vector<std::uint32_t>> carried_by_;   // per mesh face: indices into carried_positions_
+  std::vector<Vec3d> carried_positions_;                // removed vertices
+  std::vector<std::vector<std::uint32_t>> carried_by_;  // per mesh face: indices into carried_positions_
   std::size_t live_faces_ = 0;
-  std::vector<std::uint32_t> component_;   // per vertex; collapses and flips never join or split components
-  std::vector<double> volume6_;            // per component: six times its signed volume
-  std::vector<std::uint8_t> closed_;       // per component: no boundary edge
+  std::vector<std::uint32_t> component_;  // per vertex; collapses and flips never join or split components
+  std::vector<double> volume6_;           // per component: six times its signed volume
+  std::vector<std::uint8_t> closed_;      // per component: no boundary edge
 };
 
 }  // namespace mr::simplify

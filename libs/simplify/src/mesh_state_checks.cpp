@@ -131,13 +131,17 @@ bool MeshState::boundary_curve_kept(TriMesh::HalfedgeHandle h) const {
   const auto out = mesh_.halfedge_handle(v0);  // a boundary vertex's is its outgoing boundary halfedge
   const auto in = mesh_.prev_halfedge_handle(out);
   TriMesh::VertexHandle other;
-  if (mesh_.to_vertex_handle(out) == v1) other = mesh_.from_vertex_handle(in);
-  else if (mesh_.from_vertex_handle(in) == v1) other = mesh_.to_vertex_handle(out);
-  else return false;
+  if (mesh_.to_vertex_handle(out) == v1)
+    other = mesh_.from_vertex_handle(in);
+  else if (mesh_.from_vertex_handle(in) == v1)
+    other = mesh_.to_vertex_handle(out);
+  else
+    return false;
   if (other == v1) return false;
   const Vec3d a = point(other);
   const Vec3d b = point(v1);
-  if (spatial::closest_on_segment(point(v0), a, b).squared_distance > tolerances_.epsilon * tolerances_.epsilon)
+  if (spatial::closest_on_segment(point(v0), a, b).squared_distance >
+      tolerances_.epsilon * tolerances_.epsilon)
     return false;
   return boundary_envelope_->is_inside(a, b);
 }
@@ -182,8 +186,8 @@ Corners MeshState::corners_of(const SortedCorners& key) {
 // midpoints. A triangle the full test accepts has all its points within the
 // limit, so a refusal here is the full test's verdict too.
 bool MeshState::quick_envelope_refusal(const Corners& c) const {
-  for (const Vec3d& p : {Vec3d((c[0] + c[1] + c[2]) / 3.0), Vec3d(0.5 * (c[0] + c[1])), Vec3d(0.5 * (c[1] + c[2])),
-                         Vec3d(0.5 * (c[2] + c[0]))})
+  for (const Vec3d& p : {Vec3d((c[0] + c[1] + c[2]) / 3.0), Vec3d(0.5 * (c[0] + c[1])),
+                         Vec3d(0.5 * (c[1] + c[2])), Vec3d(0.5 * (c[2] + c[0]))})
     if (!envelope_->is_inside(p)) return true;
   return false;
 }
@@ -283,8 +287,8 @@ bool MeshState::faces_apart(const std::vector<NewFace>& faces, const std::vector
     std::size_t j = i;
     while (j < crossed.size() && crossed[j].first == crossed[i].first) ++j;
     const Corners& b = crossed[i].second;
-    const auto crossed_before = static_cast<std::size_t>(
-        std::count_if(old_faces.begin(), old_faces.end(), [&](const Corners& old) {
+    const auto crossed_before =
+        static_cast<std::size_t>(std::count_if(old_faces.begin(), old_faces.end(), [&](const Corners& old) {
           return !collinear(old[0], old[1], old[2]) && crosses(old, b);
         }));
     if (j - i > crossed_before) return false;
@@ -336,7 +340,8 @@ bool MeshState::flip_improves_locally(TriMesh::EdgeHandle e) const {
   if (!shapes_acceptable(after)) return false;
   // Both old and both new faces in one plane, none folded: the quad is convex
   // and both pairs tile it.
-  const std::vector<Corners> old_faces{corners(mesh_.face_handle(h0)), corners(mesh_.opposite_face_handle(h0))};
+  const std::vector<Corners> old_faces{corners(mesh_.face_handle(h0)),
+                                       corners(mesh_.opposite_face_handle(h0))};
   if (new_faces_within_old(old_faces, {after[0].corners, after[1].corners})) return true;
   return inside_envelope({after[0], after[1]}) && flip_keeps_carried_points(e, after);
 }
@@ -346,7 +351,8 @@ bool MeshState::flip_keeps_faces_apart(TriMesh::EdgeHandle e) const {
   const auto f1 = mesh_.face_handle(mesh_.halfedge_handle(e, 1));
   std::vector<NewFace> after = faces_after_flip(e);
   after.resize(2);
-  return faces_apart(after, {corners(f0), corners(f1)}, [&](TriMesh::FaceHandle f) { return f == f0 || f == f1; });
+  return faces_apart(after, {corners(f0), corners(f1)},
+                     [&](TriMesh::FaceHandle f) { return f == f0 || f == f1; });
 }
 
 }  // namespace mr::simplify

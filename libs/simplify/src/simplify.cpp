@@ -30,8 +30,8 @@ DerivedTolerances derive_tolerances(const TriangleSoup& input, const SimplifyOpt
     throw UsageError("maximum normal deviation must be in (0, 180] degrees");
   if (options.threads < 0) throw UsageError("thread count must be >= 0");
   DerivedTolerances t;
-  t.epsilon = options.epsilon_abs > 0.0 ? options.epsilon_abs
-                                        : options.epsilon_rel * bounding_box_diagonal(input);
+  t.epsilon =
+      options.epsilon_abs > 0.0 ? options.epsilon_abs : options.epsilon_rel * bounding_box_diagonal(input);
   t.cos_max_normal_deviation = std::cos(options.max_normal_deviation_deg * std::numbers::pi / 180.0);
   return t;
 }

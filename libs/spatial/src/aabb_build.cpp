@@ -170,7 +170,8 @@ class AabbBuilder {
     tbb::parallel_for(std::uint32_t{0}, n, [&](std::uint32_t slot) {
       const std::uint32_t t = order_[slot].id;
       tree_.triangle_ids_[slot] = t;
-      for (int k = 0; k < 3; ++k) tree_.corners_[3 * std::size_t{slot} + k] = soup_.positions[soup_.triangles[t][k]];
+      for (int k = 0; k < 3; ++k)
+        tree_.corners_[3 * std::size_t{slot} + k] = soup_.positions[soup_.triangles[t][k]];
     });
   }
 

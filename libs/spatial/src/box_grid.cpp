@@ -106,22 +106,24 @@ bool BoxGrid::overlaps(std::uint32_t face, const Vec3d& lo, const Vec3d& hi) con
 // and the query box cover (faces spanning several cells are otherwise listed
 // once per cell, and sorting the repeats away took most of the query time).
 // Oversized faces come from their own list.
-void BoxGrid::append_overlapping(const std::vector<std::uint32_t>& faces, const std::array<std::int64_t, 3>& cell,
-                                  const std::array<std::int64_t, 3>& query_first, const Vec3d& lo,
-                                  const Vec3d& hi, std::vector<std::uint32_t>& out) const {
+void BoxGrid::append_overlapping(const std::vector<std::uint32_t>& faces,
+                                 const std::array<std::int64_t, 3>& cell,
+                                 const std::array<std::int64_t, 3>& query_first, const Vec3d& lo,
+                                 const Vec3d& hi, std::vector<std::uint32_t>& out) const {
   for (const std::uint32_t face : faces) {
     if (boxes_[face].cells > kMaxCellsPerFace || !overlaps(face, lo, hi)) continue;
     const auto face_first = cell_of(boxes_[face].lo);
     bool first_common_cell = true;
-    for (int k = 0; k < 3; ++k) first_common_cell = first_common_cell && std::max(face_first[k], query_first[k]) == cell[k];
+    for (int k = 0; k < 3; ++k)
+      first_common_cell = first_common_cell && std::max(face_first[k], query_first[k]) == cell[k];
     if (first_common_cell) out.push_back(face);
   }
 }
 
 // For query boxes larger than the occupied part of the grid.
 void BoxGrid::collect_from_all_cells(const std::array<std::int64_t, 3>& a,
-                                      const std::array<std::int64_t, 3>& b, const Vec3d& lo, const Vec3d& hi,
-                                      std::vector<std::uint32_t>& out) const {
+                                     const std::array<std::int64_t, 3>& b, const Vec3d& lo, const Vec3d& hi,
+                                     std::vector<std::uint32_t>& out) const {
   const std::uint64_t mask = kCellRange - 1;
   for (const auto& [cell, faces] : cells_) {
     const std::array<std::int64_t, 3> c{std::int64_t(cell >> 42), std::int64_t((cell >> 21) & mask),

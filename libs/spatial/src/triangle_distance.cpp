@@ -19,8 +19,7 @@ namespace {
 // unreliable direction (rounding error ~ 1e-16 / fraction radians).
 constexpr double kDegenerateNormalFraction = 1e-6;
 
-PointOnPrimitive closest_on_edges(const Vec3d& p, const Vec3d& a, const Vec3d& b,
-                                  const Vec3d& c) {
+PointOnPrimitive closest_on_edges(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
   PointOnPrimitive best = closest_on_segment(p, a, b);
   for (const PointOnPrimitive& candidate : {closest_on_segment(p, b, c), closest_on_segment(p, c, a)}) {
     if (candidate.squared_distance < best.squared_distance) best = candidate;
@@ -35,8 +34,7 @@ PointOnPrimitive closest_on_edges(const Vec3d& p, const Vec3d& a, const Vec3d& b
 // lies on the boundary, and the minimum over the three edges is exact. The
 // edge tests are signs of triple products, so no barycentric division is
 // needed and slivers cannot produce points off the triangle.
-PointOnPrimitive closest_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b,
-                                     const Vec3d& c) {
+PointOnPrimitive closest_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
   const Vec3d ab = b - a;
   const Vec3d bc = c - b;
   const Vec3d ca = a - c;
@@ -49,8 +47,8 @@ PointOnPrimitive closest_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d
   const Vec3d pa = p - a;
   const Vec3d pb = p - b;
   const Vec3d pc = p - c;
-  const bool inside = ab.cross(pa).dot(normal) >= 0.0 && bc.cross(pb).dot(normal) >= 0.0 &&
-                      ca.cross(pc).dot(normal) >= 0.0;
+  const bool inside =
+      ab.cross(pa).dot(normal) >= 0.0 && bc.cross(pb).dot(normal) >= 0.0 && ca.cross(pc).dot(normal) >= 0.0;
   if (!inside) return closest_on_edges(p, a, b, c);
   const double height = pa.dot(normal);
   const Vec3d q = p - (height / normal_sq) * normal;

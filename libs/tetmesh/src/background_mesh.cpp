@@ -136,8 +136,8 @@ BackgroundMesh build_background_mesh(const TriangleSoup& input, const spatial::A
   arena.execute([&] { orient_and_sort(tets, points); });
   out.mesh.reserve(points.size(), tets.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const bool box = i >= out.distinct_input_vertices &&
-                     on_box(points[i], parameters.box_min, parameters.box_max);
+    const bool box =
+        i >= out.distinct_input_vertices && on_box(points[i], parameters.box_min, parameters.box_max);
     out.mesh.add_vertex(HybridPoint(points[i]), box ? kOnBox : 0);
   }
   for (const Tet& t : tets) out.mesh.add_tet(t);

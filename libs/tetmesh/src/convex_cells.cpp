@@ -22,7 +22,8 @@ struct PolygonVertex {
 std::vector<PolygonVertex> canonical_cycle(std::span<const Index> cycle, std::span<const std::uint32_t> sides,
                                            bool& reversed) {
   const std::size_t n = cycle.size();
-  const std::size_t start = static_cast<std::size_t>(std::min_element(cycle.begin(), cycle.end()) - cycle.begin());
+  const std::size_t start =
+      static_cast<std::size_t>(std::min_element(cycle.begin(), cycle.end()) - cycle.begin());
   const Index next = cycle[(start + 1) % n];
   const Index previous = cycle[(start + n - 1) % n];
   reversed = previous < next;
@@ -195,8 +196,8 @@ void triangulate_convex_polygon(const Mesh& mesh, std::span<const Index> cycle,
   emit(polygon[0], polygon[1], polygon[2]);
 }
 
-void tetrahedralize_convex_cell(Mesh& mesh, std::span<const CellTriangle> boundary,
-                                std::vector<ConeTet>& out, Index& steiner) {
+void tetrahedralize_convex_cell(Mesh& mesh, std::span<const CellTriangle> boundary, std::vector<ConeTet>& out,
+                                Index& steiner) {
   steiner = kNoVertex;
   const std::vector<Index> vertices = cell_vertices(boundary);
   for (Index v : vertices) {

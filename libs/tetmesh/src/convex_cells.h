@@ -48,8 +48,7 @@ bool collinear(const HybridPoint& p, const HybridPoint& q, const HybridPoint& r)
 /// set of the polygon sides it lies on (a corner two, a flat point one):
 /// three entries sharing a side are collinear without an exact evaluation.
 void triangulate_convex_polygon(const Mesh& mesh, std::span<const Index> cycle,
-                                std::span<const std::uint32_t> sides,
-                                std::vector<std::array<Index, 3>>& out);
+                                std::span<const std::uint32_t> sides, std::vector<std::array<Index, 3>>& out);
 
 /// True when every triangle of `boundary` that does not have `apex` as a
 /// corner is strictly visible from it: orient3d(apex, triangle) > 0. Then
@@ -67,7 +66,7 @@ void cone(Index apex, std::span<const CellTriangle> boundary, std::vector<ConeTe
 /// `boundary`, conforming to it. May add one Steiner vertex to `mesh`
 /// (returned through `steiner`, kNoVertex otherwise). Throws mr::RunError
 /// when no valid filling exists (the boundary is not that of a convex cell).
-void tetrahedralize_convex_cell(Mesh& mesh, std::span<const CellTriangle> boundary,
-                                std::vector<ConeTet>& out, Index& steiner);
+void tetrahedralize_convex_cell(Mesh& mesh, std::span<const CellTriangle> boundary, std::vector<ConeTet>& out,
+                                Index& steiner);
 
 }  // namespace mr::tetmesh::detail

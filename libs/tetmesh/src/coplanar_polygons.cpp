@@ -34,8 +34,9 @@ std::unordered_map<std::uint64_t, EdgeUse> edge_uses(std::span<const std::array<
 // Grows one polygon from triangle `seed` over the triangles not yet taken.
 class PolygonGrower {
  public:
-  PolygonGrower(const Mesh& mesh, std::span<const std::array<Index, 3>> triangles, std::span<const char> eligible,
-                const std::unordered_map<std::uint64_t, EdgeUse>& uses, std::vector<std::uint32_t>& polygon_of)
+  PolygonGrower(const Mesh& mesh, std::span<const std::array<Index, 3>> triangles,
+                std::span<const char> eligible, const std::unordered_map<std::uint64_t, EdgeUse>& uses,
+                std::vector<std::uint32_t>& polygon_of)
       : mesh_(mesh), triangles_(triangles), eligible_(eligible), uses_(uses), polygon_of_(polygon_of) {}
 
   ConvexPolygon grow(std::uint32_t seed, std::size_t max_corners) {

@@ -42,8 +42,8 @@ std::vector<Tet> finite_tets(const Triangulation& dt) {
   std::vector<Tet> tets;
   tets.reserve(dt.number_of_finite_cells());
   for (auto cell = dt.finite_cells_begin(); cell != dt.finite_cells_end(); ++cell) {
-    tets.push_back({cell->vertex(0)->info(), cell->vertex(1)->info(), cell->vertex(2)->info(),
-                    cell->vertex(3)->info()});
+    tets.push_back(
+        {cell->vertex(0)->info(), cell->vertex(1)->info(), cell->vertex(2)->info(), cell->vertex(3)->info()});
   }
   return tets;
 }
@@ -55,11 +55,12 @@ std::vector<Tet> sequential_delaunay(std::span<const Vec3d> points) {
 }
 
 #ifdef CGAL_LINKED_WITH_TBB
-using ParallelDelaunay = CGAL::Delaunay_triangulation_3<K, Tds<CGAL::Parallel_tag>, CGAL::Default,
-                                                        CGAL::Spatial_lock_grid_3<CGAL::Tag_priority_blocking>>;
+using ParallelDelaunay =
+    CGAL::Delaunay_triangulation_3<K, Tds<CGAL::Parallel_tag>, CGAL::Default,
+                                   CGAL::Spatial_lock_grid_3<CGAL::Tag_priority_blocking>>;
 
-std::vector<Tet> parallel_delaunay(std::span<const Vec3d> points, const Vec3d& box_min,
-                                   const Vec3d& box_max, int threads) {
+std::vector<Tet> parallel_delaunay(std::span<const Vec3d> points, const Vec3d& box_min, const Vec3d& box_max,
+                                   int threads) {
   const auto pairs = with_indices(points);
   const CGAL::Bbox_3 box(box_min.x(), box_min.y(), box_min.z(), box_max.x(), box_max.y(), box_max.z());
   ParallelDelaunay::Lock_data_structure locks(box, 50);

@@ -145,8 +145,9 @@ std::vector<TrackedFace> tracked_faces(const Mesh& mesh, std::span<const Index> 
     }
   }
   std::stable_sort(seen.begin(), seen.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  seen.erase(std::unique(seen.begin(), seen.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
-             seen.end());
+  seen.erase(
+      std::unique(seen.begin(), seen.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+      seen.end());
   std::vector<TrackedFace> faces;
   faces.reserve(seen.size());
   for (const auto& [key, where] : seen) {
@@ -158,14 +159,13 @@ std::vector<TrackedFace> tracked_faces(const Mesh& mesh, std::span<const Index> 
 
 std::vector<TrackedFace> tracked_faces_at(const Mesh& mesh, std::span<const Index> star, Index v) {
   std::vector<TrackedFace> faces = tracked_faces(mesh, star);
-  std::erase_if(faces, [&](const TrackedFace& f) {
-    return std::find(f.key.begin(), f.key.end(), v) == f.key.end();
-  });
+  std::erase_if(
+      faces, [&](const TrackedFace& f) { return std::find(f.key.begin(), f.key.end(), v) == f.key.end(); });
   return faces;
 }
 
-std::vector<Index> replace_tets(Workspace& ws, std::span<const Index> old_tets,
-                                std::span<const Tet> new_tets, const ParentFaces& parents) {
+std::vector<Index> replace_tets(Workspace& ws, std::span<const Index> old_tets, std::span<const Tet> new_tets,
+                                const ParentFaces& parents) {
   Mesh& mesh = ws.mesh;
   const std::vector<TrackedFace> old_faces = tracked_faces(mesh, old_tets);
   std::vector<Index> around;

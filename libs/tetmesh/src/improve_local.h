@@ -29,8 +29,7 @@ inline constexpr Index kNewVertex = kNoVertex - 1;
 class Workspace {
  public:
   /// `envelope` may be null: no tracked face may then move or change.
-  Workspace(Mesh& mesh, const envelope::Envelope* envelope, double target_edge_length,
-            double stop_energy);
+  Workspace(Mesh& mesh, const envelope::Envelope* envelope, double target_edge_length, double stop_energy);
 
   Mesh& mesh;
   const envelope::Envelope* envelope;
@@ -91,8 +90,8 @@ using ParentFaces = std::function<void(const FaceKey& face, std::vector<FaceKey>
 /// the cavity and gives each new face the ids of its parents. The caller has
 /// checked that the new tets fill the cavity and are positive. Returns the
 /// new tets.
-std::vector<Index> replace_tets(Workspace& ws, std::span<const Index> old_tets,
-                                std::span<const Tet> new_tets, const ParentFaces& parents);
+std::vector<Index> replace_tets(Workspace& ws, std::span<const Index> old_tets, std::span<const Tet> new_tets,
+                                const ParentFaces& parents);
 
 /// True when a face of one of `tets` containing both a and b lies on the hull.
 bool edge_on_hull(const Mesh& mesh, std::span<const Index> tets, Index a, Index b);

@@ -77,9 +77,9 @@ std::vector<char> mergeable(std::span<const std::array<Index, 3>> triangles, std
 
 }  // namespace
 
-InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input,
-                                std::span<const Index> input_vertex, std::span<const char> skip,
-                                const Logger& logger, const InsertionOptions& options) {
+InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input, std::span<const Index> input_vertex,
+                                std::span<const char> skip, const Logger& logger,
+                                const InsertionOptions& options) {
   if (input_vertex.size() != input.positions.size()) {
     throw UsageError("insert_triangles: the vertex map does not match the input");
   }

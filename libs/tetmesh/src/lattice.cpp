@@ -21,7 +21,8 @@ std::array<long, 3> intervals_per_axis(const Vec3d& box_min, const Vec3d& box_ma
     if (!(extent > 0.0)) throw UsageError("lattice: the box is empty");
     const double count = std::max(1.0, std::round(extent / spacing));
     total *= count + 1.0;
-    if (total > kMaxLatticePoints) throw UsageError("lattice: more than 10^8 points; choose a larger spacing");
+    if (total > kMaxLatticePoints)
+      throw UsageError("lattice: more than 10^8 points; choose a larger spacing");
     n[axis] = static_cast<long>(count);
   }
   return n;
@@ -71,13 +72,12 @@ std::vector<Vec3d> voxel_stuffing_points(const Vec3d& box_min, const Vec3d& box_
                                          double clearance, const spatial::AabbTree& tree) {
   const std::vector<Vec3d> all = lattice_points(box_min, box_max, spacing);
   std::vector<char> keep(all.size(), 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, all.size(), 256),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        keep[i] = !is_box_corner(all[i], box_min, box_max) &&
-                                  !tree.any_within(all[i], clearance);
-                      }
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, all.size(), 256), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          keep[i] = !is_box_corner(all[i], box_min, box_max) && !tree.any_within(all[i], clearance);
+        }
+      });
   std::vector<Vec3d> kept;
   for (std::size_t i = 0; i < all.size(); ++i) {
     if (keep[i]) kept.push_back(all[i]);

@@ -156,11 +156,10 @@ void Mesh::connect(std::span<const Index> tets) {
   }
   // A tet listed twice would offer each free face twice.
   std::sort(faces.begin(), faces.end());
-  faces.erase(std::unique(faces.begin(), faces.end(),
-                          [](const FaceSlot& a, const FaceSlot& b) {
-                            return a.tet == b.tet && a.face == b.face;
-                          }),
-              faces.end());
+  faces.erase(
+      std::unique(faces.begin(), faces.end(),
+                  [](const FaceSlot& a, const FaceSlot& b) { return a.tet == b.tet && a.face == b.face; }),
+      faces.end());
   link_matching_faces(faces);
 }
 

@@ -19,7 +19,8 @@ std::string tet_name(Index t) { return "tet " + std::to_string(t); }
 std::string check_corners(const Mesh& mesh, Index t) {
   const Tet& c = mesh.tet(t);
   for (int i = 0; i < 4; ++i) {
-    if (!mesh.vertex_alive(c[i])) return tet_name(t) + " uses removed or missing vertex " + std::to_string(c[i]);
+    if (!mesh.vertex_alive(c[i]))
+      return tet_name(t) + " uses removed or missing vertex " + std::to_string(c[i]);
     for (int j = 0; j < i; ++j) {
       if (c[i] == c[j]) return tet_name(t) + " repeats vertex " + std::to_string(c[i]);
     }
@@ -60,8 +61,8 @@ std::string check_marks(const Mesh& mesh, Index t, int f) {
   if (!mesh.is_surface_face(t, f)) return "";
   for (const Index v : mesh.face_vertices(t, f)) {
     if (!mesh.has_flag(v, kOnSurface)) {
-      return tet_name(t) + " face " + std::to_string(f) + " is tracked but vertex " +
-             std::to_string(v) + " is not flagged on-surface";
+      return tet_name(t) + " face " + std::to_string(f) + " is tracked but vertex " + std::to_string(v) +
+             " is not flagged on-surface";
     }
   }
   return "";
@@ -75,8 +76,8 @@ Index first_badly_oriented(const Mesh& mesh) {
         for (Index t = range.begin(); t != range.end() && t < found; ++t) {
           if (!mesh.tet_alive(t)) continue;
           const Tet& c = mesh.tet(t);
-          if (orient3d(mesh.position(c[0]), mesh.position(c[1]), mesh.position(c[2]),
-                       mesh.position(c[3])) <= 0) {
+          if (orient3d(mesh.position(c[0]), mesh.position(c[1]), mesh.position(c[2]), mesh.position(c[3])) <=
+              0) {
             return t;
           }
         }

@@ -59,13 +59,14 @@ DerivedParameters derive_parameters(const TetrahedralizeOptions& options, const 
     throw RunError("the input's bounding box has no extent (or is not finite): nothing to tetrahedralize");
   }
   p.epsilon = absolute_or_relative(options.epsilon_abs, options.epsilon_rel, p.diagonal, "epsilon");
-  p.edge_length = absolute_or_relative(options.edge_length_abs, options.edge_length_rel, p.diagonal,
-                                       "edge length");
+  p.edge_length =
+      absolute_or_relative(options.edge_length_abs, options.edge_length_rel, p.diagonal, "edge length");
   p.lattice_spacing = options.lattice_spacing_rel * p.diagonal;
   p.lattice_clearance = options.lattice_clearance_rel * p.diagonal;
   if (p.lattice_spacing > 0.0 && !(p.lattice_clearance > p.epsilon)) {
-    throw UsageError("the lattice clearance (delta) must exceed epsilon, or lattice points could "
-                     "sit inside the envelope");
+    throw UsageError(
+        "the lattice clearance (delta) must exceed epsilon, or lattice points could "
+        "sit inside the envelope");
   }
   const double snap = options.snap_fraction * p.epsilon;
   p.snap_spacing = std::isnormal(snap) ? power_of_two_at_most(snap) : 0.0;

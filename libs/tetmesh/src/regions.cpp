@@ -39,7 +39,9 @@ std::vector<std::int32_t> region_labels(const Mesh& mesh, std::span<const char> 
 
 Vec3d input_normal(const TriangleSoup& input, std::uint32_t id) {
   const Triangle& t = input.triangles[id];
-  return (input.positions[t[1]] - input.positions[t[0]]).cross(input.positions[t[2]] - input.positions[t[0]]).normalized();
+  return (input.positions[t[1]] - input.positions[t[0]])
+      .cross(input.positions[t[2]] - input.positions[t[0]])
+      .normalized();
 }
 
 namespace {
@@ -86,7 +88,9 @@ int face_direction(const Mesh& mesh, Index t, int k, const TriangleSoup& input, 
 
 TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const TriangleSoup& input,
                              Multiplicity multiplicity) {
-  const auto kept = [&](Index t) { return t != kNoTet && mesh.tet_alive(t) && (keep.empty() || keep[t] != 0); };
+  const auto kept = [&](Index t) {
+    return t != kNoTet && mesh.tet_alive(t) && (keep.empty() || keep[t] != 0);
+  };
   TriangleSoup surface;
   std::vector<double> votes;
   std::vector<Index> used(mesh.vertex_slots(), kNoVertex);
@@ -171,9 +175,10 @@ std::size_t edges_away_from(const TriangleSoup& surface, std::span<const std::ar
                             const TriangleSoup& triangles, double radius) {
   if (triangles.triangles.empty()) return edges.size();
   const spatial::AabbTree tree(triangles);
-  return static_cast<std::size_t>(std::count_if(edges.begin(), edges.end(), [&](const std::array<Index, 2>& e) {
-    return !tree.any_within(0.5 * (surface.positions[e[0]] + surface.positions[e[1]]), radius);
-  }));
+  return static_cast<std::size_t>(
+      std::count_if(edges.begin(), edges.end(), [&](const std::array<Index, 2>& e) {
+        return !tree.any_within(0.5 * (surface.positions[e[0]] + surface.positions[e[1]]), radius);
+      }));
 }
 
 std::size_t count_non_positive_tets(const TetMesh& mesh) {

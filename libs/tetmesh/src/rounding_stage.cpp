@@ -45,7 +45,8 @@ std::vector<Index> nearby_neighbours(const Mesh& mesh, Index v, std::span<const 
 // closer than a rounding step that must be merged together.
 constexpr std::size_t kMaxCluster = 16;
 
-std::vector<Index> cluster_around(const Mesh& mesh, const VertexTets& incidence, Index v, double max_distance) {
+std::vector<Index> cluster_around(const Mesh& mesh, const VertexTets& incidence, Index v,
+                                  double max_distance) {
   std::vector<Index> cluster{v};
   const Vec3d& p = mesh.position(v).approx;
   for (std::size_t i = 0; i < cluster.size() && cluster.size() < kMaxCluster; ++i) {
@@ -115,7 +116,8 @@ class Sweep {
     const std::vector<Index> cluster = cluster_around(mesh_, incidence_, v, max_distance_);
     if (cluster.size() < 3) return false;  // a pair was tried by collapse_onto_neighbour
     std::vector<Index> targets(cluster.begin() + 1, cluster.end());
-    std::stable_partition(targets.begin(), targets.end(), [&](Index u) { return !mesh_.position(u).is_exact(); });
+    std::stable_partition(targets.begin(), targets.end(),
+                          [&](Index u) { return !mesh_.position(u).is_exact(); });
     for (Index u : targets) {
       std::vector<Index> removed;
       for (Index w : cluster) {

@@ -58,7 +58,8 @@ void count(StageTimer& timer, const char* key, std::size_t value) {
 // background mesh (see embed_and_improve).
 constexpr int kEmbeddingAttempts = 8;
 
-std::unique_ptr<envelope::Envelope> input_envelope(const TriangleSoup& input, const DerivedParameters& derived) {
+std::unique_ptr<envelope::Envelope> input_envelope(const TriangleSoup& input,
+                                                   const DerivedParameters& derived) {
   envelope::EnvelopeOptions envelope_options;
   envelope_options.epsilon = derived.epsilon;
   return envelope::make_envelope(input, envelope_options);
@@ -73,7 +74,8 @@ std::unique_ptr<envelope::Envelope> open_boundary_envelope(const TriangleSoup& i
   std::vector<std::array<Index, 2>> edges;
   for (const Triangle& t : welded.triangles) {
     if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue;
-    for (int i = 0; i < 3; ++i) edges.push_back({std::min(t[i], t[(i + 1) % 3]), std::max(t[i], t[(i + 1) % 3])});
+    for (int i = 0; i < 3; ++i)
+      edges.push_back({std::min(t[i], t[(i + 1) % 3]), std::max(t[i], t[(i + 1) % 3])});
   }
   std::sort(edges.begin(), edges.end());
   TriangleSoup boundary;
@@ -90,7 +92,8 @@ std::unique_ptr<envelope::Envelope> open_boundary_envelope(const TriangleSoup& i
 
 std::size_t count_rational(const Mesh& mesh) {
   std::size_t count = 0;
-  for (Index v = 0; v < mesh.vertex_slots(); ++v) count += mesh.vertex_alive(v) && mesh.position(v).is_exact();
+  for (Index v = 0; v < mesh.vertex_slots(); ++v)
+    count += mesh.vertex_alive(v) && mesh.position(v).is_exact();
   return count;
 }
 
@@ -237,7 +240,8 @@ EmbeddedSurface embed_and_improve(const TriangleSoup& simplified, const SurfaceB
   for (int attempt = 1;; ++attempt) {
     Embedding embedding = embed_once(out.surface, out.left_out, bounds, derived, options, stats, logger);
     Mesh& mesh = embedding.mesh;
-    if (options.improve) improve(mesh, bounds, derived, options.tetrahedralize.max_passes, options, stats, logger);
+    if (options.improve)
+      improve(mesh, bounds, derived, options.tetrahedralize.max_passes, options, stats, logger);
     const std::size_t remaining = count_rational(mesh);
     if (remaining == 0) {
       out.mesh = std::move(mesh);
@@ -246,7 +250,8 @@ EmbeddedSurface embed_and_improve(const TriangleSoup& simplified, const SurfaceB
     const bool coarsen = spacing > 0 && kSnapCoarsening * spacing <= kMaxRetrySnapFraction * derived.epsilon;
     const std::size_t newly_left_out = coarsen ? 0 : leave_out_stuck_creators(embedding, out.left_out);
     if (attempt == kEmbeddingAttempts || (!coarsen && newly_left_out == 0)) {
-      throw RunError(std::to_string(remaining) + " cut points could not be rounded to doubles "
+      throw RunError(std::to_string(remaining) +
+                     " cut points could not be rounded to doubles "
                      "without inverting a tet; the mesh is not written");
     }
     const std::string stuck =
@@ -320,8 +325,8 @@ TetClassification classify_for_filter(Mesh& mesh, const TriangleSoup& surface, s
     return classes;
   }
   std::size_t near_queries = 0;
-  TetClassification classes =
-      classify_tets_near_input(mesh, WindingNumberTree(tracked), surface, left_out, offsets, rule, &near_queries);
+  TetClassification classes = classify_tets_near_input(mesh, WindingNumberTree(tracked), surface, left_out,
+                                                       offsets, rule, &near_queries);
   count(timer, "near_surface_queries", near_queries);
   return classes;
 }
@@ -366,8 +371,8 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
   {
     StageTimer timer(result.stats, "filter", logger);
     if (options.filter) {
-      const TetClassification classes =
-          classify_for_filter(mesh, surface, left_out, derived, *envelope, options.tetrahedralize.winding_rule, timer);
+      const TetClassification classes = classify_for_filter(mesh, surface, left_out, derived, *envelope,
+                                                            options.tetrahedralize.winding_rule, timer);
       keep = classes.keep;
       count(timer, "kept_tets", classes.kept);
     }
@@ -380,8 +385,10 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
     } else {
       // Every tet, labelled 1 / 0 by the filter or by its region.
       std::vector<std::int32_t> labels;
-      if (options.filter) labels.assign(keep.begin(), keep.end());
-      else labels = detail::region_labels(mesh);
+      if (options.filter)
+        labels.assign(keep.begin(), keep.end());
+      else
+        labels = detail::region_labels(mesh);
       result.mesh = to_tet_mesh(mesh);
       for (Index t = 0; t < mesh.tet_slots(); ++t) {
         if (mesh.tet_alive(t)) result.mesh.tet_labels.push_back(labels[t]);
@@ -390,7 +397,8 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
     result.tracked_surface = detail::tracked_surface(mesh, keep, surface);
     const std::size_t bad = detail::count_non_positive_tets(result.mesh);
     if (bad != 0) {
-      throw RunError(std::to_string(bad) + " tets are not positively oriented on the written "
+      throw RunError(std::to_string(bad) +
+                     " tets are not positively oriented on the written "
                      "coordinates (internal error); the mesh is not written");
     }
     count(timer, "tets", result.mesh.tets.size());
@@ -417,7 +425,8 @@ PipelineResult solid_from_sheets(const TriangleSoup& input, const PipelineOption
   // keeps them where insertion put them.
   thick.improve = false;
   empty.stats.stage("filter").count("thickened_sheets", 1);
-  PipelineResult result = run(thicken_sheets(input, 0.5 * derived.epsilon), thick, std::move(empty.stats), logger);
+  PipelineResult result =
+      run(thicken_sheets(input, 0.5 * derived.epsilon), thick, std::move(empty.stats), logger);
   result.parameters.epsilon = derived.epsilon;  // what the result is within, measured from the input
   return result;
 }
@@ -432,9 +441,10 @@ PipelineResult run_to_solid(const TriangleSoup& input, const PipelineOptions& op
 
 }  // namespace
 
-PipelineResult tetrahedralize(const TriangleSoup& input, const PipelineOptions& options, const Logger& logger) {
-  const int threads = options.tetrahedralize.threads > 0 ? options.tetrahedralize.threads
-                                                         : tbb::info::default_concurrency();
+PipelineResult tetrahedralize(const TriangleSoup& input, const PipelineOptions& options,
+                              const Logger& logger) {
+  const int threads =
+      options.tetrahedralize.threads > 0 ? options.tetrahedralize.threads : tbb::info::default_concurrency();
   tbb::task_arena arena(threads);
   return arena.execute([&] { return run_to_solid(input, options, logger); });
 }

@@ -259,7 +259,8 @@ bool TriangleInserter::section_outside_a_line(Index t) {
     }
     for (const auto& [i, j] : kTetEdges) {
       if (!outside) break;
-      if (plane_sign(c[i]) * plane_sign(c[j]) < 0 && (line_side(line, c[i]) >= 0 || line_side(line, c[j]) >= 0)) {
+      if (plane_sign(c[i]) * plane_sign(c[j]) < 0 &&
+          (line_side(line, c[i]) >= 0 || line_side(line, c[j]) >= 0)) {
         outside = false;
       }
     }
@@ -335,9 +336,9 @@ Index TriangleInserter::split_point(Index u, Index v, int line, Index seed_tet) 
   const HybridPoint& pv = mesh_.position(v);
   const Index w = mesh_.add_vertex(
       line < 0 ? plane_point(u, v)
-               : HybridPoint::from_exact(intersect_segment_plane(pu, pv, mesh_.position(corners_[line]),
-                                                                 mesh_.position(corners_[(line + 1) % line_count()]),
-                                                                 line_lift_[line])));
+               : HybridPoint::from_exact(intersect_segment_plane(
+                     pu, pv, mesh_.position(corners_[line]),
+                     mesh_.position(corners_[(line + 1) % line_count()]), line_lift_[line])));
   note_new_vertex(w);
   it->second = w;
   if (new_vertices_.count(u) == 0 && new_vertices_.count(v) == 0) {
@@ -432,7 +433,7 @@ std::pair<std::vector<Index>, std::vector<Index>> TriangleInserter::split_polygo
 // The pieces of a polygon on P: those outside T keep `ids`, the one inside
 // (if any) gets T's id too.
 std::vector<TriangleInserter::Piece> TriangleInserter::clip_by_polygon(std::vector<Index> polygon,
-                                                                        const Ids& ids, Index seed_tet) {
+                                                                       const Ids& ids, Index seed_tet) {
   std::vector<Piece> pieces;
   for (int line = 0; line < static_cast<int>(line_count()); ++line) {
     auto [inside, outside] = split_polygon(polygon, line, seed_tet);

@@ -37,13 +37,13 @@ namespace mr::tetmesh::detail {
 
 struct InsertionCounters {
   std::size_t inserted = 0;
-  std::size_t degenerate = 0;      ///< triangles with collinear corners: nothing to insert
+  std::size_t degenerate = 0;  ///< triangles with collinear corners: nothing to insert
   std::size_t cut_tets = 0;
-  std::size_t rebuilt_tets = 0;    ///< tets of all cavities
+  std::size_t rebuilt_tets = 0;  ///< tets of all cavities
   std::size_t new_tets = 0;
-  std::size_t new_vertices = 0;    ///< cut points (Steiner points excluded)
-  std::size_t steiner_points = 0;  ///< cell centres, where no corner could cone a cell
-  std::size_t eagerly_rounded = 0; ///< cut points rounded during insertion (too many bits)
+  std::size_t new_vertices = 0;     ///< cut points (Steiner points excluded)
+  std::size_t steiner_points = 0;   ///< cell centres, where no corner could cone a cell
+  std::size_t eagerly_rounded = 0;  ///< cut points rounded during insertion (too many bits)
 };
 
 class TriangleInserter {
@@ -95,8 +95,8 @@ class TriangleInserter {
   Index split_point(Index u, Index v, int line, Index seed_tet);
   void register_cut_points();
   std::vector<Index> section_polygon(Index t);
-  std::pair<std::vector<Index>, std::vector<Index>> split_polygon(const std::vector<Index>& polygon,
-                                                                  int line, Index seed_tet);
+  std::pair<std::vector<Index>, std::vector<Index>> split_polygon(const std::vector<Index>& polygon, int line,
+                                                                  Index seed_tet);
   std::vector<Piece> clip_by_polygon(std::vector<Index> polygon, const Ids& ids, Index seed_tet);
   void split_faces_of_cut_tets();
   void clip_faces_on_plane();
@@ -105,10 +105,12 @@ class TriangleInserter {
   void add_to_cavity(Index t);
   void walk_around_edge(Index u, Index v, Index seed);
 
-  std::vector<Index> with_flat_points(const std::vector<Index>& polygon, std::vector<std::uint32_t>& sides) const;
+  std::vector<Index> with_flat_points(const std::vector<Index>& polygon,
+                                      std::vector<std::uint32_t>& sides) const;
   void append_edge_interior(Index u, Index v, std::vector<Index>& out) const;
   std::vector<Piece> face_pieces(Index t, int face);
-  void add_polygon(const std::vector<Index>& polygon, const Ids& ids, int plane, std::vector<CellTriangle>& cell);
+  void add_polygon(const std::vector<Index>& polygon, const Ids& ids, int plane,
+                   std::vector<CellTriangle>& cell);
   void build_cell(std::vector<CellTriangle>& cell, std::vector<ConeTet>& tets);
   void rebuild_cavity();
   void round_oversized_points(std::span<const Index> created);
@@ -127,20 +129,20 @@ class TriangleInserter {
   std::uint32_t generation_ = 0;
   std::uint32_t id_ = 0;
   std::vector<Index> corners_;
-  std::vector<HybridPoint> line_lift_;    ///< corner i + unit vector along axis_: the line planes
-  int axis_ = 0;                          ///< projection axis for the lines through T's edges
-  int orientation_ = 1;                   ///< sign making T's interior positive for line_side
+  std::vector<HybridPoint> line_lift_;  ///< corner i + unit vector along axis_: the line planes
+  int axis_ = 0;                        ///< projection axis for the lines through T's edges
+  int orientation_ = 1;                 ///< sign making T's interior positive for line_side
   std::unordered_map<Index, int> plane_sign_;
   std::unordered_map<Index, std::array<std::int8_t, kMaxCorners>> line_side_;
   std::vector<std::uint32_t> candidate_stamp_, cut_stamp_, cavity_stamp_;
   std::vector<Index> candidates_, cut_tets_, cavity_;
   std::unordered_map<std::uint64_t, HybridPoint> plane_points_;  ///< P on edge (sorted pair), computed once
-  std::unordered_map<std::uint64_t, Index> splits_;  ///< segment (sorted pair) -> its new point
-  std::vector<std::array<Index, 3>> split_mesh_edges_;  ///< u, v, a tet around the edge
+  std::unordered_map<std::uint64_t, Index> splits_;              ///< segment (sorted pair) -> its new point
+  std::vector<std::array<Index, 3>> split_mesh_edges_;           ///< u, v, a tet around the edge
   std::unordered_set<Index> new_vertices_;
   std::unordered_map<Index, std::vector<Piece>> section_pieces_;
   std::map<std::array<Index, 3>, SplitFace> split_faces_;  ///< key: sorted corners
-  std::deque<Ids> ids_storage_;  ///< ids that cell triangles point to
+  std::deque<Ids> ids_storage_;                            ///< ids that cell triangles point to
 };
 
 }  // namespace mr::tetmesh::detail

@@ -24,7 +24,7 @@ void TriangleInserter::append_edge_interior(Index u, Index v, std::vector<Index>
 // The polygon with the flat points of its sides, and per entry the bit set
 // of the sides it lies on (corner i is on sides i - 1 and i).
 std::vector<Index> TriangleInserter::with_flat_points(const std::vector<Index>& polygon,
-                                                     std::vector<std::uint32_t>& sides) const {
+                                                      std::vector<std::uint32_t>& sides) const {
   std::vector<Index> result;
   sides.clear();
   const std::size_t n = polygon.size();

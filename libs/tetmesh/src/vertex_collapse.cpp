@@ -21,7 +21,9 @@ std::array<Index, 3> sorted3(std::array<Index, 3> f) {
   return f;
 }
 
-bool contains(std::span<const Index> set, Index v) { return std::find(set.begin(), set.end(), v) != set.end(); }
+bool contains(std::span<const Index> set, Index v) {
+  return std::find(set.begin(), set.end(), v) != set.end();
+}
 
 // Tracked faces through removed vertices that survive the collapse as faces
 // through u (a face keeping three distinct corners).
@@ -78,15 +80,17 @@ bool collapse_vertices(Mesh& mesh, std::span<const Index> removed, Index u, std:
     for (int k = 0; k < 4; ++k) {
       const Index n = mesh.neighbour(t, k);
       const std::array<Index, 3> f = mesh.face_vertices(t, k);
-      const bool through_removed = contains(removed, f[0]) || contains(removed, f[1]) || contains(removed, f[2]);
+      const bool through_removed =
+          contains(removed, f[0]) || contains(removed, f[1]) || contains(removed, f[2]);
       if (n == kNoTet && through_removed) {
         // A hull face through a removed vertex vanishes; the cone's side
         // faces replace it, on the same plane only if u is on that plane.
-        const int side = orient3d(mesh.position(u), mesh.position(f[0]), mesh.position(f[1]), mesh.position(f[2]));
+        const int side =
+            orient3d(mesh.position(u), mesh.position(f[0]), mesh.position(f[1]), mesh.position(f[2]));
         if (side != 0) return false;
         continue;
       }
-      if (n != kNoTet && contains(star, n)) continue;     // inside the star
+      if (n != kNoTet && contains(star, n)) continue;  // inside the star
       const auto ids = mesh.surface_ids(t, k);
       const Ids* stored = ids.empty() ? nullptr : &storage.emplace_back(ids.begin(), ids.end());
       boundary.push_back({f, stored});

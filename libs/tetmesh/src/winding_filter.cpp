@@ -154,8 +154,9 @@ TetClassification classify_tets_near_input(const Mesh& mesh, const WindingNumber
   if (near_queries != nullptr) *near_queries = near_points.size();
 
   std::size_t next_far = 0, next_near = 0;
-  return classification(mesh, slots, rule,
-                        [&](std::size_t i) { return near[i] ? near_values[next_near++] : far_values[next_far++]; });
+  return classification(mesh, slots, rule, [&](std::size_t i) {
+    return near[i] ? near_values[next_near++] : far_values[next_far++];
+  });
 }
 
 std::vector<char> tets_near(const Mesh& mesh, const TriangleSoup& triangles) {

@@ -54,7 +54,8 @@ void add_child_moments(const Node& child, const Vec3d& center, Node& node) {
     for (int k = i; k < 3; ++k)
       for (int j = 0; j < 3; ++j)
         node.second[sym(i, k) * 3 + j] += child.second[sym(i, k) * 3 + j] + delta[i] * child.first(k, j) +
-                                          delta[k] * child.first(i, j) + delta[i] * delta[k] * child.normal_sum[j];
+                                          delta[k] * child.first(i, j) +
+                                          delta[i] * delta[k] * child.normal_sum[j];
 }
 
 class TreeBuilder {
@@ -139,7 +140,8 @@ class TreeBuilder {
     for (std::uint32_t i = node.begin; i < node.end; ++i) {
       const Corners& t = triangles_[order_[i]];
       add_triangle_moments(t, node.center, node);
-      for (const Vec3d* p : {&t.a, &t.b, &t.c}) node.radius = std::max(node.radius, (*p - node.center).norm());
+      for (const Vec3d* p : {&t.a, &t.b, &t.c})
+        node.radius = std::max(node.radius, (*p - node.center).norm());
     }
   }
 
@@ -204,11 +206,12 @@ double WindingNumberTree::evaluate_node_expansion(const Node& node, const Vec3d&
   double dot_r[6];  // sum_j r_j D_ikj for each pair (i, k)
   for (int s = 0; s < 6; ++s) dot_r[s] = r[0] * d[3 * s] + r[1] * d[3 * s + 1] + r[2] * d[3 * s + 2];
   const double contract_ii = dot_r[0] + dot_r[3] + dot_r[5];
-  const double contract_all = r[0] * r[0] * dot_r[0] + r[1] * r[1] * dot_r[3] + r[2] * r[2] * dot_r[5] +
-                              2.0 * (r[0] * r[1] * dot_r[1] + r[0] * r[2] * dot_r[2] + r[1] * r[2] * dot_r[4]);
+  const double contract_all =
+      r[0] * r[0] * dot_r[0] + r[1] * r[1] * dot_r[3] + r[2] * r[2] * dot_r[5] +
+      2.0 * (r[0] * r[1] * dot_r[1] + r[0] * r[2] * dot_r[2] + r[1] * r[2] * dot_r[4]);
   // sum_ik r_k D_iki
-  const double contract_ik = r[0] * (d[0] + d[4] + d[8]) + r[1] * (d[3] + d[10] + d[14]) +
-                             r[2] * (d[6] + d[13] + d[17]);
+  const double contract_ik =
+      r[0] * (d[0] + d[4] + d[8]) + r[1] * (d[3] + d[10] + d[14]) + r[2] * (d[6] + d[13] + d[17]);
   const double order2 = 0.5 * (-3.0 * inv5 * (2.0 * contract_ik + contract_ii) + 15.0 * inv7 * contract_all);
   return (order0 + order1 + order2) * inv_four_pi;
 }
@@ -240,7 +243,8 @@ std::vector<double> WindingNumberTree::evaluate(std::span<const Vec3d> queries) 
   std::vector<double> result(queries.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, queries.size(), 64),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) result[i] = evaluate(queries[i]);
+                      for (std::size_t i = range.begin(); i != range.end(); ++i)
+                        result[i] = evaluate(queries[i]);
                     });
   return result;
 }

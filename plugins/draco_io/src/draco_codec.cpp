@@ -28,7 +28,7 @@ namespace {
 /// Which point of the Draco mesh each face corner uses, and which soup vertex each point stands for.
 struct PointLayout {
   std::vector<Index> point_vertex;
-  std::vector<std::int32_t> point_region;      ///< empty unless regions are encoded
+  std::vector<std::int32_t> point_region;  ///< empty unless regions are encoded
   std::vector<std::array<Index, 3>> face_points;
 };
 
@@ -100,7 +100,8 @@ int add_vertex_attribute(draco::Mesh& mesh, const PointLayout& layout, draco::Ge
 
 int add_region_attribute(draco::Mesh& mesh, const std::vector<std::int32_t>& point_region) {
   draco::GeometryAttribute descriptor;
-  descriptor.Init(draco::GeometryAttribute::GENERIC, nullptr, 1, draco::DT_INT32, false, sizeof(std::int32_t), 0);
+  descriptor.Init(draco::GeometryAttribute::GENERIC, nullptr, 1, draco::DT_INT32, false, sizeof(std::int32_t),
+                  0);
   const int id = mesh.AddAttribute(descriptor, true, static_cast<std::uint32_t>(point_region.size()));
   draco::PointAttribute* attribute = mesh.attribute(id);
   for (std::size_t p = 0; p < point_region.size(); ++p)
@@ -168,7 +169,8 @@ EncodeResult run_encoder(const BuiltMesh& built, const io::DracoOptions& options
 void check_options(const io::DracoOptions& options) {
   const auto check_bits = [](int bits, const char* what) {
     if (bits < 1 || bits > 30)
-      throw RunError(std::string("Draco ") + what + " quantization must be 1 to 30 bits, not " + std::to_string(bits));
+      throw RunError(std::string("Draco ") + what + " quantization must be 1 to 30 bits, not " +
+                     std::to_string(bits));
   };
   check_bits(options.position_bits, "position");
   check_bits(options.normal_bits, "normal");
@@ -205,7 +207,8 @@ DracoEncoded encode_draco_mesh(const TriangleSoup& soup, const io::DracoOptions&
   const auto unique_id = [&](int attribute_id) {
     return attribute_id < 0 ? -1 : static_cast<int>(built.mesh.attribute(attribute_id)->unique_id());
   };
-  encoded.ids = {unique_id(built.position), unique_id(built.normal), unique_id(built.uv), unique_id(built.color)};
+  encoded.ids = {unique_id(built.position), unique_id(built.normal), unique_id(built.uv),
+                 unique_id(built.color)};
   return encoded;
 }
 

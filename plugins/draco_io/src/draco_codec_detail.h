@@ -13,7 +13,7 @@ inline constexpr const char* kRegionMetadataValue = "face_region";
 
 DracoEncoded encode_draco_mesh(const TriangleSoup& soup, const io::DracoOptions& options, bool with_regions);
 
-TriangleSoup decode_draco_mesh(std::string_view bytes, const std::string& source, const DracoAttributeIds& ids,
-                               bool with_regions);
+TriangleSoup decode_draco_mesh(std::string_view bytes, const std::string& source,
+                               const DracoAttributeIds& ids, bool with_regions);
 
 }  // namespace mr::plugins::detail

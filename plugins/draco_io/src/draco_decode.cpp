@@ -26,7 +26,9 @@ namespace {
 using Type = draco::GeometryAttribute;
 
 std::unique_ptr<draco::Mesh> decode_mesh(std::string_view bytes, const std::string& source) {
-  const auto invalid = [&](const std::string& why) { return InputError(source, "not a valid Draco mesh: " + why); };
+  const auto invalid = [&](const std::string& why) {
+    return InputError(source, "not a valid Draco mesh: " + why);
+  };
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
   draco::Decoder decoder;
@@ -60,8 +62,8 @@ const draco::PointAttribute* find_attribute(const draco::Mesh& mesh, int unique_
   return attribute;
 }
 
-CheckedAttribute check_attribute(const draco::Mesh& mesh, const draco::PointAttribute* attribute, int components,
-                                 const std::string& source, const char* what) {
+CheckedAttribute check_attribute(const draco::Mesh& mesh, const draco::PointAttribute* attribute,
+                                 int components, const std::string& source, const char* what) {
   if (!attribute) return {};
   const auto bad = [&](const std::string& why) {
     return InputError(source, std::string("Draco ") + what + " attribute " + why);
@@ -98,12 +100,14 @@ void check_faces(const draco::Mesh& mesh, const std::string& source) {
 }
 
 template <int N>
-std::array<float, N> value_of(const CheckedAttribute& checked, draco::PointIndex point, const std::string& source) {
+std::array<float, N> value_of(const CheckedAttribute& checked, draco::PointIndex point,
+                              const std::string& source) {
   std::array<float, N> value{};
   if (!checked.attribute->ConvertValue<float>(checked.attribute->mapped_index(point), N, value.data()))
     throw InputError(source, std::string("cannot convert a Draco ") + checked.what + " value");
   for (float x : value)
-    if (!std::isfinite(x)) throw InputError(source, std::string("Draco ") + checked.what + " value is not finite");
+    if (!std::isfinite(x))
+      throw InputError(source, std::string("Draco ") + checked.what + " value is not finite");
   return value;
 }
 
@@ -120,7 +124,8 @@ struct KeyHash {
 };
 
 /// The soup vertex of each point; returns the vertex count through `num_vertices`.
-std::vector<Index> vertex_of_points(const draco::Mesh& mesh, const SoupAttributes& a, std::size_t& num_vertices) {
+std::vector<Index> vertex_of_points(const draco::Mesh& mesh, const SoupAttributes& a,
+                                    std::size_t& num_vertices) {
   const std::uint32_t points = mesh.num_points();
   std::vector<Index> vertex(points);
   if (a.position.attribute->is_mapping_identity()) {  // distinct positions: one vertex a point
@@ -142,8 +147,8 @@ std::vector<Index> vertex_of_points(const draco::Mesh& mesh, const SoupAttribute
   return vertex;
 }
 
-void fill_vertices(const draco::Mesh& mesh, const SoupAttributes& a, const std::vector<Index>& vertex_of_point,
-                   TriangleSoup& soup, const std::string& source) {
+void fill_vertices(const draco::Mesh& mesh, const SoupAttributes& a,
+                   const std::vector<Index>& vertex_of_point, TriangleSoup& soup, const std::string& source) {
   const std::size_t n = soup.positions.size();
   if (a.normal) soup.normals.resize(n);
   if (a.uv) soup.uvs.resize(n);
@@ -174,7 +179,8 @@ void fill_faces(const draco::Mesh& mesh, const SoupAttributes& a, const std::vec
     for (int c = 0; c < 3; ++c) soup.triangles[f.value()][c] = vertex_of_point[face[c].value()];
     if (!a.region) continue;
     std::int32_t region = 0;
-    if (!a.region.attribute->ConvertValue<std::int32_t>(a.region.attribute->mapped_index(face[0]), 1, &region))
+    if (!a.region.attribute->ConvertValue<std::int32_t>(a.region.attribute->mapped_index(face[0]), 1,
+                                                        &region))
       throw InputError(source, "cannot convert a Draco face region value");
     soup.face_regions[f.value()] = region;
   }
@@ -200,8 +206,8 @@ SoupAttributes find_soup_attributes(const draco::Mesh& mesh, const DracoAttribut
 
 }  // namespace
 
-TriangleSoup decode_draco_mesh(std::string_view bytes, const std::string& source, const DracoAttributeIds& ids,
-                               bool with_regions) {
+TriangleSoup decode_draco_mesh(std::string_view bytes, const std::string& source,
+                               const DracoAttributeIds& ids, bool with_regions) {
   const std::unique_ptr<draco::Mesh> mesh = decode_mesh(bytes, source);
   check_faces(*mesh, source);
   const SoupAttributes attributes = find_soup_attributes(*mesh, ids, with_regions, source);

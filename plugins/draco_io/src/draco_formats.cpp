@@ -28,8 +28,9 @@ void register_draco_formats(io::Registry& registry) {
   drc.name = "drc";
   drc.extensions = {".drc"};
   drc.kind = io::MeshKind::surface;
-  drc.description = "Google Draco compressed mesh (normals, uvs, colours and face regions kept; "
-                    "positions quantized, see --draco-position-bits)";
+  drc.description =
+      "Google Draco compressed mesh (normals, uvs, colours and face regions kept; "
+      "positions quantized, see --draco-position-bits)";
   drc.read_surface = read_drc;
   drc.write_surface = write_drc;
   drc.position_grid = [](const io::WriteOptions& options, const Vec3d& lo, const Vec3d& hi) {

@@ -42,14 +42,16 @@ GlbChunks split_glb(std::string_view bytes, const std::string& path) {
   if (length > bytes.size())
     in.fail("GLB length field says " + std::to_string(length) + " bytes but the file has only " +
             std::to_string(bytes.size()));
-  if (length < header_size + chunk_header_size) in.fail("GLB length field " + std::to_string(length) + " is too small");
+  if (length < header_size + chunk_header_size)
+    in.fail("GLB length field " + std::to_string(length) + " is too small");
 
   GlbChunks chunks;
   chunks.glb = bytes.substr(0, length);
   io::ByteReader glb(path, chunks.glb.data(), chunks.glb.size());
   glb.seek(header_size, "GLB header");
   const auto json_length = glb.read<std::uint32_t>("JSON chunk length");
-  if (glb.read<std::uint32_t>("JSON chunk type") != json_chunk_type) glb.fail("the first GLB chunk is not JSON");
+  if (glb.read<std::uint32_t>("JSON chunk type") != json_chunk_type)
+    glb.fail("the first GLB chunk is not JSON");
   if (json_length > glb.remaining())
     glb.fail("JSON chunk length " + std::to_string(json_length) + " runs past the end of the GLB (" +
              std::to_string(glb.remaining()) + " bytes left)");

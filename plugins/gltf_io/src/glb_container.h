@@ -13,9 +13,9 @@ namespace mr::plugins::gltf {
 bool has_glb_magic(std::string_view bytes);
 
 struct GlbChunks {
-  std::string_view glb;   ///< the container itself: the file up to the header's length field
-  std::string_view json;  ///< the JSON chunk's payload
-  std::string_view bin;   ///< the BIN chunk's payload; empty if there is none
+  std::string_view glb;            ///< the container itself: the file up to the header's length field
+  std::string_view json;           ///< the JSON chunk's payload
+  std::string_view bin;            ///< the BIN chunk's payload; empty if there is none
   std::size_t json_chunk_end = 0;  ///< offset just past the JSON chunk
 };
 

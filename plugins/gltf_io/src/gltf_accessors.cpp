@@ -12,22 +12,31 @@ namespace {
 std::size_t component_size(int component_type) {
   switch (component_type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
     case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;
   }
 }
 
 int element_components(int type) {
   switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    default: return 0;
+    case TINYGLTF_TYPE_SCALAR:
+      return 1;
+    case TINYGLTF_TYPE_VEC2:
+      return 2;
+    case TINYGLTF_TYPE_VEC3:
+      return 3;
+    case TINYGLTF_TYPE_VEC4:
+      return 4;
+    default:
+      return 0;
   }
 }
 
@@ -40,23 +49,29 @@ T load(const unsigned char* p) {
 
 float component_as_float(const unsigned char* p, int component_type, bool normalized) {
   switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? load<std::uint8_t>(p) / 255.0f : load<std::uint8_t>(p);
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return load<float>(p);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return normalized ? load<std::uint8_t>(p) / 255.0f : load<std::uint8_t>(p);
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
       return normalized ? load<std::uint16_t>(p) / 65535.0f : load<std::uint16_t>(p);
     case TINYGLTF_COMPONENT_TYPE_BYTE:
       return normalized ? std::max(load<std::int8_t>(p) / 127.0f, -1.0f) : load<std::int8_t>(p);
     case TINYGLTF_COMPONENT_TYPE_SHORT:
       return normalized ? std::max(load<std::int16_t>(p) / 32767.0f, -1.0f) : load<std::int16_t>(p);
-    default: return static_cast<float>(load<std::uint32_t>(p));
+    default:
+      return static_cast<float>(load<std::uint32_t>(p));
   }
 }
 
 std::uint32_t component_as_index(const unsigned char* p, int component_type) {
   switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return load<std::uint8_t>(p);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return load<std::uint16_t>(p);
-    default: return load<std::uint32_t>(p);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return load<std::uint8_t>(p);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return load<std::uint16_t>(p);
+    default:
+      return load<std::uint32_t>(p);
   }
 }
 
@@ -75,11 +90,13 @@ AccessorReader::View AccessorReader::view(int index, const char* what) const {
   const tinygltf::BufferView& buffer_view = model_.bufferViews[static_cast<std::size_t>(accessor.bufferView)];
   if (buffer_view.buffer < 0 || static_cast<std::size_t>(buffer_view.buffer) >= model_.buffers.size())
     fail("bufferView " + std::to_string(accessor.bufferView) + " refers to a buffer that does not exist");
-  const std::vector<unsigned char>& buffer = model_.buffers[static_cast<std::size_t>(buffer_view.buffer)].data;
-  if (buffer_view.byteOffset > buffer.size() || buffer_view.byteLength > buffer.size() - buffer_view.byteOffset)
-    fail("bufferView " + std::to_string(accessor.bufferView) + " (offset " + std::to_string(buffer_view.byteOffset) +
-         ", length " + std::to_string(buffer_view.byteLength) + ") lies outside its buffer of " +
-         std::to_string(buffer.size()) + " bytes");
+  const std::vector<unsigned char>& buffer =
+      model_.buffers[static_cast<std::size_t>(buffer_view.buffer)].data;
+  if (buffer_view.byteOffset > buffer.size() ||
+      buffer_view.byteLength > buffer.size() - buffer_view.byteOffset)
+    fail("bufferView " + std::to_string(accessor.bufferView) + " (offset " +
+         std::to_string(buffer_view.byteOffset) + ", length " + std::to_string(buffer_view.byteLength) +
+         ") lies outside its buffer of " + std::to_string(buffer.size()) + " bytes");
 
   View v;
   v.component_type = accessor.componentType;
@@ -90,7 +107,8 @@ AccessorReader::View AccessorReader::view(int index, const char* what) const {
   if (v.components == 0) fail(name + " has an unsupported type (matrices are not mesh data)");
   const std::size_t element = size * static_cast<std::size_t>(v.components);
   v.stride = buffer_view.byteStride != 0 ? buffer_view.byteStride : element;
-  if (v.stride < element) fail(name + ": byteStride " + std::to_string(v.stride) + " is smaller than an element");
+  if (v.stride < element)
+    fail(name + ": byteStride " + std::to_string(v.stride) + " is smaller than an element");
   v.count = accessor.count;
   if (v.count > 0) {
     const std::size_t available = buffer_view.byteLength;
@@ -110,7 +128,8 @@ std::size_t AccessorReader::count(int index, const char* what) const { return vi
 std::vector<float> AccessorReader::read_floats(int index, std::initializer_list<int> allowed_components,
                                                int& components, const char* what) const {
   const View v = view(index, what);
-  if (std::find(allowed_components.begin(), allowed_components.end(), v.components) == allowed_components.end())
+  if (std::find(allowed_components.begin(), allowed_components.end(), v.components) ==
+      allowed_components.end())
     fail(std::string(what) + " accessor " + std::to_string(index) + " has " + std::to_string(v.components) +
          " components per element, which is not allowed for it");
   components = v.components;
@@ -120,7 +139,8 @@ std::vector<float> AccessorReader::read_floats(int index, std::initializer_list<
   for (std::size_t i = 0; i < v.count; ++i) {
     const unsigned char* element = v.data + i * v.stride;
     for (int c = 0; c < v.components; ++c)
-      *out++ = component_as_float(element + static_cast<std::size_t>(c) * size, v.component_type, v.normalized);
+      *out++ =
+          component_as_float(element + static_cast<std::size_t>(c) * size, v.component_type, v.normalized);
   }
   return values;
 }

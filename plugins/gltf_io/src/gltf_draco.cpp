@@ -9,11 +9,13 @@
 namespace mr::plugins::gltf {
 namespace {
 
-[[maybe_unused]] int attribute_id(const tinygltf::Value& attributes, const char* name, const std::string& path) {
+[[maybe_unused]] int attribute_id(const tinygltf::Value& attributes, const char* name,
+                                  const std::string& path) {
   if (!attributes.Has(name)) return -1;
   const tinygltf::Value& id = attributes.Get(name);
   if (!id.IsInt() || id.Get<int>() < 0)
-    throw InputError(path, std::string(draco_extension) + ": attribute id of " + name + " is not a non-negative integer");
+    throw InputError(
+        path, std::string(draco_extension) + ": attribute id of " + name + " is not a non-negative integer");
   return id.Get<int>();
 }
 
@@ -28,9 +30,11 @@ namespace {
     throw InputError(path, prefix + "bufferView " + std::to_string(view) + " does not exist");
   const tinygltf::BufferView& buffer_view = model.bufferViews[static_cast<std::size_t>(view)];
   if (buffer_view.buffer < 0 || static_cast<std::size_t>(buffer_view.buffer) >= model.buffers.size())
-    throw InputError(path, prefix + "bufferView " + std::to_string(view) + " refers to a buffer that does not exist");
+    throw InputError(
+        path, prefix + "bufferView " + std::to_string(view) + " refers to a buffer that does not exist");
   const auto& buffer = model.buffers[static_cast<std::size_t>(buffer_view.buffer)].data;
-  if (buffer_view.byteOffset > buffer.size() || buffer_view.byteLength > buffer.size() - buffer_view.byteOffset)
+  if (buffer_view.byteOffset > buffer.size() ||
+      buffer_view.byteLength > buffer.size() - buffer_view.byteOffset)
     throw InputError(path, prefix + "bufferView " + std::to_string(view) + " lies outside its buffer");
   return {reinterpret_cast<const char*>(buffer.data()) + buffer_view.byteOffset, buffer_view.byteLength};
 }
@@ -83,7 +87,8 @@ DracoPrimitive encode_draco_primitive(const TriangleSoup& soup, const io::DracoO
 
 #else
 
-TriangleSoup decode_draco_primitive(const tinygltf::Model&, const tinygltf::Primitive&, const std::string& path) {
+TriangleSoup decode_draco_primitive(const tinygltf::Model&, const tinygltf::Primitive&,
+                                    const std::string& path) {
   throw InputError(path, std::string("uses ") + draco_extension + ", but this build has no Draco support");
 }
 

@@ -16,10 +16,13 @@ void register_gltf_formats(io::Registry& registry) {
       return gltf::read_gltf(path, glb);
     };
     format.write_surface = [glb](const TriangleSoup& soup, const std::filesystem::path& path,
-                                 const io::WriteOptions& options) { gltf::write_gltf(soup, path, options, glb); };
+                                 const io::WriteOptions& options) {
+      gltf::write_gltf(soup, path, options, glb);
+    };
     // Positions are float32 accessors, or Draco's grid with --draco.
     format.position_grid = [](const io::WriteOptions& options, const Vec3d& lo, const Vec3d& hi) {
-      return options.draco.compress_gltf ? io::draco_position_grid(options.draco, lo, hi) : CoordinateGrid::float32();
+      return options.draco.compress_gltf ? io::draco_position_grid(options.draco, lo, hi)
+                                         : CoordinateGrid::float32();
     };
     registry.add(std::move(format));
   };

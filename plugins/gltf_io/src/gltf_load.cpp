@@ -23,13 +23,16 @@ void check_json_depth(std::string_view json, const std::string& path) {
   for (std::size_t i = 0; i < json.size(); ++i) {
     const char c = json[i];
     if (in_string) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_string = false;
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
     } else if (c == '"') {
       in_string = true;
     } else if (c == '{' || c == '[') {
       if (++depth > max_json_depth)
-        throw InputError(path, "invalid glTF: JSON nested more than " + std::to_string(max_json_depth) + " levels deep");
+        throw InputError(
+            path, "invalid glTF: JSON nested more than " + std::to_string(max_json_depth) + " levels deep");
     } else if (c == '}' || c == ']') {
       --depth;
     }
@@ -71,8 +74,8 @@ bool refuse_write(std::string* err, const std::string&, const std::vector<unsign
 }
 
 // We never need pixels: images are accepted as they are, undecoded.
-bool ignore_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-                  void*) {
+bool ignore_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*,
+                  int, void*) {
   return true;
 }
 
@@ -88,7 +91,8 @@ std::string drop_draco_index_accessors(std::string_view json, const std::string&
     for (auto& primitive : mesh["primitives"]) {
       if (!primitive.is_object() || !primitive.contains("extensions")) continue;
       const auto& extensions = primitive["extensions"];
-      if (extensions.is_object() && extensions.contains("KHR_draco_mesh_compression")) primitive.erase("indices");
+      if (extensions.is_object() && extensions.contains("KHR_draco_mesh_compression"))
+        primitive.erase("indices");
     }
   }
   return doc.dump();
@@ -101,7 +105,8 @@ std::string trim(std::string text) {
 
 }  // namespace
 
-tinygltf::Model load_model(const std::vector<char>& bytes, const std::filesystem::path& path, bool require_glb) {
+tinygltf::Model load_model(const std::vector<char>& bytes, const std::filesystem::path& path,
+                           bool require_glb) {
   const std::string name = path.string();
   const std::string_view all(bytes.data(), bytes.size());
   const bool glb = require_glb || has_glb_magic(all);
@@ -133,12 +138,14 @@ tinygltf::Model load_model(const std::vector<char>& bytes, const std::filesystem
   bool ok = false;
   try {
     if (glb) {
-      const std::string_view data = has_draco ? std::string_view(patched_glb.data(), patched_glb.size()) : chunks.glb;
-      ok = loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(data.data()),
+      const std::string_view data =
+          has_draco ? std::string_view(patched_glb.data(), patched_glb.size()) : chunks.glb;
+      ok = loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                       reinterpret_cast<const unsigned char*>(data.data()),
                                        static_cast<unsigned int>(data.size()), base_dir);
     } else {
-      ok = loader.LoadASCIIFromString(&model, &err, &warn, json.data(), static_cast<unsigned int>(json.size()),
-                                      base_dir);
+      ok = loader.LoadASCIIFromString(&model, &err, &warn, json.data(),
+                                      static_cast<unsigned int>(json.size()), base_dir);
     }
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(name, "invalid JSON: " + library_error_text(e));
@@ -148,7 +155,8 @@ tinygltf::Model load_model(const std::vector<char>& bytes, const std::filesystem
   if (!ok) {
     // tinygltf reports JSON syntax errors as nlohmann's parse_error text.
     const bool syntax = err.find("parse_error") != std::string::npos;
-    throw InputError(name, (syntax ? "invalid JSON: " : "invalid glTF: ") + (err.empty() ? "unknown error" : trim(err)));
+    throw InputError(
+        name, (syntax ? "invalid JSON: " : "invalid glTF: ") + (err.empty() ? "unknown error" : trim(err)));
   }
   return model;
 }

@@ -13,6 +13,7 @@ namespace mr::plugins::gltf {
 
 /// `require_glb`: the file was named or forced as GLB, so it must carry the
 /// GLB magic. Otherwise GLB content is still recognised by its magic.
-tinygltf::Model load_model(const std::vector<char>& bytes, const std::filesystem::path& path, bool require_glb);
+tinygltf::Model load_model(const std::vector<char>& bytes, const std::filesystem::path& path,
+                           bool require_glb);
 
 }  // namespace mr::plugins::gltf

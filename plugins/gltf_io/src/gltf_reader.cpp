@@ -27,7 +27,8 @@ bool changes_geometry(const std::string& extension) {
 
 void check_required_extensions(const tinygltf::Model& model, const std::string& path) {
   for (const std::string& extension : model.extensionsRequired)
-    if (changes_geometry(extension)) throw InputError(path, "requires the unsupported glTF extension " + extension);
+    if (changes_geometry(extension))
+      throw InputError(path, "requires the unsupported glTF extension " + extension);
 }
 
 int attribute(const tinygltf::Primitive& primitive, const char* name) {
@@ -39,7 +40,8 @@ int attribute(const tinygltf::Primitive& primitive, const char* name) {
 TriangleSoup read_vertices(const AccessorReader& reader, const tinygltf::Primitive& primitive) {
   TriangleSoup soup;
   int components = 0;
-  const std::vector<float> positions = reader.read_floats(attribute(primitive, "POSITION"), {3}, components, "POSITION");
+  const std::vector<float> positions =
+      reader.read_floats(attribute(primitive, "POSITION"), {3}, components, "POSITION");
   soup.positions.resize(positions.size() / 3);
   for (std::size_t i = 0; i < soup.positions.size(); ++i) {
     soup.positions[i] = Vec3d(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
@@ -52,8 +54,8 @@ TriangleSoup read_vertices(const AccessorReader& reader, const tinygltf::Primiti
     std::vector<float> values = reader.read_floats(attribute(primitive, name), allowed, components, name);
     if (values.size() != n * static_cast<std::size_t>(components))
       reader.fail(std::string(name) + " accessor " + std::to_string(attribute(primitive, name)) + " has " +
-                  std::to_string(values.size() / static_cast<std::size_t>(components)) + " elements but POSITION has " +
-                  std::to_string(n));
+                  std::to_string(values.size() / static_cast<std::size_t>(components)) +
+                  " elements but POSITION has " + std::to_string(n));
     return values;
   };
   if (attribute(primitive, "NORMAL") >= 0) {
@@ -82,7 +84,8 @@ std::vector<Triangle> assemble_triangles(const std::vector<Index>& v, int mode) 
     for (std::size_t i = 0; i + 2 < n; i += 3) triangles.push_back({v[i], v[i + 1], v[i + 2]});
   } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
     for (std::size_t i = 0; i + 2 < n; ++i)  // odd triangles swap their last two vertices to keep the winding
-      triangles.push_back(i % 2 == 0 ? Triangle{v[i], v[i + 1], v[i + 2]} : Triangle{v[i], v[i + 2], v[i + 1]});
+      triangles.push_back(i % 2 == 0 ? Triangle{v[i], v[i + 1], v[i + 2]}
+                                     : Triangle{v[i], v[i + 2], v[i + 1]});
   } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
     for (std::size_t i = 0; i + 2 < n; ++i) triangles.push_back({v[i + 1], v[i + 2], v[0]});
   }
@@ -126,7 +129,8 @@ class GltfReader {
     const Transform transform(instance.world);
     // Primitives of one instance that share their vertex accessors share vertices.
     std::map<std::array<int, 4>, Index> shared;
-    for (const tinygltf::Primitive& primitive : model_.meshes[static_cast<std::size_t>(instance.mesh)].primitives) {
+    for (const tinygltf::Primitive& primitive :
+         model_.meshes[static_cast<std::size_t>(instance.mesh)].primitives) {
       if (!is_triangle_mode(primitive.mode, path_)) continue;
       const int material = checked_material(primitive.material);
       if (is_draco_primitive(primitive)) {
@@ -140,7 +144,8 @@ class GltfReader {
                                    attribute(primitive, "TEXCOORD_0"), attribute(primitive, "COLOR_0")};
       auto found = shared.find(key);
       if (found == shared.end())
-        found = shared.emplace(key, builder_.add_vertices(read_vertices(accessors_, primitive), transform)).first;
+        found =
+            shared.emplace(key, builder_.add_vertices(read_vertices(accessors_, primitive), transform)).first;
       const std::size_t vertex_count = accessors_.count(key[0], "POSITION");
       const std::vector<Triangle> triangles =
           assemble_triangles(primitive_indices(accessors_, primitive, vertex_count), primitive.mode);
@@ -150,14 +155,16 @@ class GltfReader {
 
   int checked_material(int material) const {
     if (material >= static_cast<int>(model_.materials.size()))
-      throw InputError(path_, "a primitive refers to material " + std::to_string(material) + ", which does not exist");
+      throw InputError(
+          path_, "a primitive refers to material " + std::to_string(material) + ", which does not exist");
     return material < 0 ? -1 : material;
   }
 
   std::vector<std::string> material_names() const {
     std::vector<std::string> names;
     for (std::size_t i = 0; i < model_.materials.size(); ++i)
-      names.push_back(model_.materials[i].name.empty() ? "material_" + std::to_string(i) : model_.materials[i].name);
+      names.push_back(model_.materials[i].name.empty() ? "material_" + std::to_string(i)
+                                                       : model_.materials[i].name);
     return names;
   }
 

@@ -11,14 +11,16 @@ namespace {
 
 void check_finite(const std::vector<double>& values, int node, const char* what, const std::string& path) {
   for (double v : values)
-    if (!std::isfinite(v)) throw InputError(path, "node " + std::to_string(node) + " has a non-finite " + what);
+    if (!std::isfinite(v))
+      throw InputError(path, "node " + std::to_string(node) + " has a non-finite " + what);
 }
 
 void check_size(const std::vector<double>& values, std::size_t expected, int node, const char* what,
                 const std::string& path) {
   if (!values.empty() && values.size() != expected)
-    throw InputError(path, "node " + std::to_string(node) + ": " + what + " has " + std::to_string(values.size()) +
-                               " numbers instead of " + std::to_string(expected));
+    throw InputError(path, "node " + std::to_string(node) + ": " + what + " has " +
+                               std::to_string(values.size()) + " numbers instead of " +
+                               std::to_string(expected));
   check_finite(values, node, what, path);
 }
 
@@ -33,10 +35,13 @@ Eigen::Matrix4d local_transform(const tinygltf::Node& node, int index, const std
     return m;
   }
   Eigen::Affine3d t = Eigen::Affine3d::Identity();
-  if (!node.translation.empty()) t.translate(Eigen::Vector3d(node.translation[0], node.translation[1], node.translation[2]));
+  if (!node.translation.empty())
+    t.translate(Eigen::Vector3d(node.translation[0], node.translation[1], node.translation[2]));
   if (!node.rotation.empty()) {
-    Eigen::Quaterniond q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);  // glTF stores x,y,z,w
-    if (q.norm() == 0) throw InputError(path, "node " + std::to_string(index) + " has a zero rotation quaternion");
+    Eigen::Quaterniond q(node.rotation[3], node.rotation[0], node.rotation[1],
+                         node.rotation[2]);  // glTF stores x,y,z,w
+    if (q.norm() == 0)
+      throw InputError(path, "node " + std::to_string(index) + " has a zero rotation quaternion");
     t.rotate(q.normalized());
   }
   if (!node.scale.empty()) t.scale(Eigen::Vector3d(node.scale[0], node.scale[1], node.scale[2]));
@@ -63,8 +68,8 @@ class SceneWalker {
       const Eigen::Matrix4d world = parent * local_transform(node, index, path_);
       if (node.mesh >= 0) {
         if (static_cast<std::size_t>(node.mesh) >= model_.meshes.size())
-          throw InputError(path_, "node " + std::to_string(index) + " refers to mesh " + std::to_string(node.mesh) +
-                                      ", which does not exist");
+          throw InputError(path_, "node " + std::to_string(index) + " refers to mesh " +
+                                      std::to_string(node.mesh) + ", which does not exist");
         instances_.push_back({node.mesh, world});
       }
       for (int child : node.children) {
@@ -83,7 +88,8 @@ class SceneWalker {
  private:
   void check_node(int index, const char* from) const {
     if (index < 0 || static_cast<std::size_t>(index) >= model_.nodes.size())
-      throw InputError(path_, std::string(from) + " refers to node " + std::to_string(index) + ", which does not exist");
+      throw InputError(
+          path_, std::string(from) + " refers to node " + std::to_string(index) + ", which does not exist");
   }
 
   const tinygltf::Model& model_;

@@ -3,8 +3,8 @@
 // (or of every scene if none is the default; every mesh untransformed if the
 // file has no scenes), with each node's world transform.
 
-#include <Eigen/Core>
 #include <tiny_gltf.h>
+#include <Eigen/Core>
 
 #include <string>
 #include <vector>

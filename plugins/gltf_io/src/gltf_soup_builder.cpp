@@ -38,15 +38,17 @@ SoupBuilder::SoupBuilder(std::string path, std::size_t buffer_bytes)
 void SoupBuilder::check_growth(std::size_t vertices, std::size_t triangles) const {
   if (vertices > limit_ - std::min(limit_, soup_.positions.size()) ||
       triangles > limit_ - std::min(limit_, soup_.triangles.size()))
-    throw InputError(path_, "the scene instances its meshes into more than " + std::to_string(limit_) +
-                                " vertices or triangles, far more than the file's data; refusing to expand it");
+    throw InputError(path_,
+                     "the scene instances its meshes into more than " + std::to_string(limit_) +
+                         " vertices or triangles, far more than the file's data; refusing to expand it");
 }
 
 Index SoupBuilder::add_vertices(const TriangleSoup& piece, const Transform& transform) {
   check_growth(piece.positions.size(), 0);
   const std::size_t before = soup_.positions.size();
   const std::size_t after = before + piece.positions.size();
-  for (const Vec3d& p : piece.positions) soup_.positions.push_back(transform.linear * p + transform.translation);
+  for (const Vec3d& p : piece.positions)
+    soup_.positions.push_back(transform.linear * p + transform.translation);
 
   all_have_normals_ = all_have_normals_ && piece.has_normals();
   if (all_have_normals_) {
@@ -59,13 +61,17 @@ Index SoupBuilder::add_vertices(const TriangleSoup& piece, const Transform& tran
     soup_.normals.clear();
   }
   all_have_uvs_ = all_have_uvs_ && piece.has_uvs();
-  if (all_have_uvs_) soup_.uvs.insert(soup_.uvs.end(), piece.uvs.begin(), piece.uvs.end());
-  else soup_.uvs.clear();
+  if (all_have_uvs_)
+    soup_.uvs.insert(soup_.uvs.end(), piece.uvs.begin(), piece.uvs.end());
+  else
+    soup_.uvs.clear();
 
   if (piece.has_colors() && !any_has_colors_) soup_.colors.assign(before, opaque_white);
   any_has_colors_ = any_has_colors_ || piece.has_colors();
-  if (piece.has_colors()) soup_.colors.insert(soup_.colors.end(), piece.colors.begin(), piece.colors.end());
-  else if (any_has_colors_) soup_.colors.resize(after, opaque_white);
+  if (piece.has_colors())
+    soup_.colors.insert(soup_.colors.end(), piece.colors.begin(), piece.colors.end());
+  else if (any_has_colors_)
+    soup_.colors.resize(after, opaque_white);
   return static_cast<Index>(before);
 }
 
@@ -81,9 +87,11 @@ void SoupBuilder::add_triangles(const std::vector<Triangle>& triangles, Index ba
 }
 
 TriangleSoup SoupBuilder::finish(const std::vector<std::string>& material_names) {
-  const bool any_material = std::any_of(face_materials_.begin(), face_materials_.end(), [](int m) { return m >= 0; });
+  const bool any_material =
+      std::any_of(face_materials_.begin(), face_materials_.end(), [](int m) { return m >= 0; });
   if (any_material) {
-    const bool any_without = std::any_of(face_materials_.begin(), face_materials_.end(), [](int m) { return m < 0; });
+    const bool any_without =
+        std::any_of(face_materials_.begin(), face_materials_.end(), [](int m) { return m < 0; });
     soup_.region_names = material_names;
     const auto default_region = static_cast<std::int32_t>(material_names.size());
     if (any_without) soup_.region_names.push_back("default");

@@ -32,7 +32,8 @@ class SoupBuilder {
   Index add_vertices(const TriangleSoup& piece, const Transform& transform);
 
   /// Appends triangles whose indices are relative to `base`; `material` -1 = none.
-  void add_triangles(const std::vector<Triangle>& triangles, Index base, int material, const Transform& transform);
+  void add_triangles(const std::vector<Triangle>& triangles, Index base, int material,
+                     const Transform& transform);
 
   TriangleSoup finish(const std::vector<std::string>& material_names);
 

@@ -16,7 +16,8 @@ bool usable_normal(const Vec3f& n) { return n.allFinite() && n.norm() > 1e-12f; 
 std::vector<Vec3d> face_normal_sums(const TriangleSoup& soup) {
   std::vector<Vec3d> sums(soup.positions.size(), Vec3d::Zero());
   for (const Triangle& t : soup.triangles) {
-    const Vec3d n = (soup.positions[t[1]] - soup.positions[t[0]]).cross(soup.positions[t[2]] - soup.positions[t[0]]);
+    const Vec3d n =
+        (soup.positions[t[1]] - soup.positions[t[0]]).cross(soup.positions[t[2]] - soup.positions[t[0]]);
     for (Index v : t) sums[v] += n;
   }
   return sums;
@@ -55,7 +56,8 @@ FloatArrays float_arrays(const TriangleSoup& soup) {
   for (const Vec3d& p : soup.positions) {
     for (int c = 0; c < 3; ++c) {
       const auto f = static_cast<float>(p[c]);
-      if (!std::isfinite(f)) throw RunError("a coordinate (" + std::to_string(p[c]) + ") does not fit in a glTF float");
+      if (!std::isfinite(f))
+        throw RunError("a coordinate (" + std::to_string(p[c]) + ") does not fit in a glTF float");
       a.positions.push_back(f);
       a.min[static_cast<std::size_t>(c)] = std::min(a.min[static_cast<std::size_t>(c)], f);
       a.max[static_cast<std::size_t>(c)] = std::max(a.max[static_cast<std::size_t>(c)], f);

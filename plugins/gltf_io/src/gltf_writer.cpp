@@ -45,7 +45,8 @@ class DocumentBuilder {
     const std::vector<RegionGroup> groups = group_by_region(soup_);
     if (soup_.has_face_regions()) assign_materials(groups);
     json primitives = json::array();
-    if (!soup_.triangles.empty()) primitives = draco_.compress_gltf ? draco_primitives(groups) : plain_primitives(groups);
+    if (!soup_.triangles.empty())
+      primitives = draco_.compress_gltf ? draco_primitives(groups) : plain_primitives(groups);
     if (primitives.empty()) {
       doc["scenes"] = json::array({json::object()});
       return doc;
@@ -81,8 +82,8 @@ class DocumentBuilder {
       const int view = buffer_.add_view(values.data(), values.size() * sizeof(float), array_buffer);
       attributes[name] = buffer_.add_accessor(float_accessor(view, n, type));
     };
-    attributes["POSITION"] =
-        buffer_.add_accessor(position_accessor(buffer_.add_view(a.positions.data(), a.positions.size() * 4, array_buffer), n, a));
+    attributes["POSITION"] = buffer_.add_accessor(
+        position_accessor(buffer_.add_view(a.positions.data(), a.positions.size() * 4, array_buffer), n, a));
     if (soup_.has_normals()) add("NORMAL", a.normals, "VEC3");
     if (soup_.has_uvs()) add("TEXCOORD_0", a.uvs, "VEC2");
     if (soup_.has_colors()) add("COLOR_0", a.colors, "VEC4");
@@ -134,8 +135,9 @@ class DocumentBuilder {
                                                : float_accessor(-1, n, "VEC3");
         attributes[name] = buffer_.add_accessor(std::move(accessor));
       }
-      const int indices = buffer_.add_accessor(
-          {{"componentType", index_component_type(n)}, {"count", 3 * part.triangles.size()}, {"type", "SCALAR"}});
+      const int indices = buffer_.add_accessor({{"componentType", index_component_type(n)},
+                                                {"count", 3 * part.triangles.size()},
+                                                {"type", "SCALAR"}});
       json p = primitive(attributes, indices, group.region);
       const int view = buffer_.add_view(encoded.bytes.data(), encoded.bytes.size(), std::nullopt);
       p["extensions"][draco_extension] = {{"bufferView", view}, {"attributes", encoded.attribute_ids}};
@@ -153,11 +155,13 @@ class DocumentBuilder {
     const bool dense = static_cast<std::size_t>(max_region + 1) <= names + groups.size() + 1024;
     std::size_t count = dense ? std::max(names, static_cast<std::size_t>(max_region + 1)) : 0;
     for (const RegionGroup& group : groups)
-      if (group.region >= 0) material_of_region_[group.region] = dense ? group.region : static_cast<int>(count++);
+      if (group.region >= 0)
+        material_of_region_[group.region] = dense ? group.region : static_cast<int>(count++);
     if (dense) {
       for (std::size_t i = 0; i < count; ++i) materials_.push_back(material(i));
     } else {
-      for (const auto& [region, index] : material_of_region_) materials_.push_back(material(static_cast<std::size_t>(region)));
+      for (const auto& [region, index] : material_of_region_)
+        materials_.push_back(material(static_cast<std::size_t>(region)));
     }
   }
 
@@ -185,7 +189,8 @@ void write_gltf(const TriangleSoup& soup, const std::filesystem::path& path, con
   const std::vector<char>& bin = builder.bytes();
   if (!bin.empty()) {
     json buffer = {{"byteLength", bin.size()}};
-    if (!glb) buffer["uri"] = "data:application/octet-stream;base64," + base64_encode({bin.data(), bin.size()});
+    if (!glb)
+      buffer["uri"] = "data:application/octet-stream;base64," + base64_encode({bin.data(), bin.size()});
     doc["buffers"] = json::array({buffer});
   }
   const std::string text = doc.dump();

@@ -116,8 +116,8 @@ class ObjParser {
     if (index == 0) cursor_.fail(std::string(what) + " index 0 (OBJ indices start at 1)");
     const std::int64_t resolved = index > 0 ? index - 1 : static_cast<std::int64_t>(defined) + index;
     if (resolved < 0 || resolved >= static_cast<std::int64_t>(defined))
-      cursor_.fail(std::string(what) + " index " + std::to_string(index) + " out of range: " +
-                   std::to_string(defined) + " defined so far");
+      cursor_.fail(std::string(what) + " index " + std::to_string(index) +
+                   " out of range: " + std::to_string(defined) + " defined so far");
     return resolved;
   }
 
@@ -130,7 +130,8 @@ class ObjParser {
     const std::size_t slash2 = rest.find('/');
     const std::string_view uv = rest.substr(0, slash2);
     if (!uv.empty()) corner.uv = resolve(uv, uvs_.size(), "texture coordinate");
-    if (slash2 != std::string_view::npos) corner.normal = resolve(rest.substr(slash2 + 1), normals_.size(), "normal");
+    if (slash2 != std::string_view::npos)
+      corner.normal = resolve(rest.substr(slash2 + 1), normals_.size(), "normal");
     return corner;
   }
 
@@ -141,7 +142,8 @@ class ObjParser {
       polygon_.push_back(corner.position);
       add_corner_attributes(corner);
     }
-    if (polygon_.size() < 3) cursor_.fail("face with " + std::to_string(polygon_.size()) + " vertices, needs at least 3");
+    if (polygon_.size() < 3)
+      cursor_.fail("face with " + std::to_string(polygon_.size()) + " vertices, needs at least 3");
     append_fan(triangles_, polygon_);
     face_materials_.resize(triangles_.size(), material_);
     face_groups_.resize(triangles_.size(), group_);
@@ -176,12 +178,14 @@ class ObjParser {
     if (!uv_sum_.empty()) {
       uv_sum_.resize(n, Vec3d::Zero());
       for (const Vec3d& s : uv_sum_)
-        soup.uvs.push_back(s.z() > 0 ? Vec2f(static_cast<float>(s.x() / s.z()), static_cast<float>(s.y() / s.z()))
-                                     : Vec2f::Zero());
+        soup.uvs.push_back(s.z() > 0
+                               ? Vec2f(static_cast<float>(s.x() / s.z()), static_cast<float>(s.y() / s.z()))
+                               : Vec2f::Zero());
     }
     if (!normal_sum_.empty()) {
       normal_sum_.resize(n, Vec3d::Zero());
-      for (const Vec3d& s : normal_sum_) soup.normals.push_back(s.norm() > 0 ? Vec3f(s.normalized().cast<float>()) : Vec3f::Zero());
+      for (const Vec3d& s : normal_sum_)
+        soup.normals.push_back(s.norm() > 0 ? Vec3f(s.normalized().cast<float>()) : Vec3f::Zero());
     }
     if (colors_.size() == n && n > 0) soup.colors = std::move(colors_);
     soup.positions = std::move(positions_);

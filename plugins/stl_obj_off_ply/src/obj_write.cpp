@@ -13,7 +13,8 @@ namespace mr::plugins::stl_obj_off_ply {
 namespace {
 
 std::string region_name(const TriangleSoup& soup, std::int32_t region) {
-  if (region >= 0 && static_cast<std::size_t>(region) < soup.region_names.size() && !soup.region_names[region].empty()) {
+  if (region >= 0 && static_cast<std::size_t>(region) < soup.region_names.size() &&
+      !soup.region_names[region].empty()) {
     std::string name = io::as_utf8(soup.region_names[region]);
     for (char& c : name)
       if (c == '\n' || c == '\r') c = ' ';
@@ -26,7 +27,8 @@ void write_vertices(const TriangleSoup& soup, io::OutputFile& out) {
   for (std::size_t v = 0; v < soup.num_vertices(); ++v) {
     const Vec3d& p = soup.positions[v];
     out << "v " << p.x() << ' ' << p.y() << ' ' << p.z();
-    if (soup.has_colors()) out << ' ' << soup.colors[v].x() << ' ' << soup.colors[v].y() << ' ' << soup.colors[v].z();
+    if (soup.has_colors())
+      out << ' ' << soup.colors[v].x() << ' ' << soup.colors[v].y() << ' ' << soup.colors[v].z();
     out << '\n';
   }
   for (const Vec2f& uv : soup.uvs) out << "vt " << uv.x() << ' ' << uv.y() << '\n';

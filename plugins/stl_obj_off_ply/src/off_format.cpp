@@ -65,7 +65,8 @@ class OffParser {
     io::Tokens tokens(content_line("the OFF header"));
     const std::string_view keyword = tokens.next();
     const std::size_t off = keyword.find("OFF");
-    if (off == std::string_view::npos) cursor_.fail("not an OFF file: the first word is '" + std::string(keyword.substr(0, 40)) + "'");
+    if (off == std::string_view::npos)
+      cursor_.fail("not an OFF file: the first word is '" + std::string(keyword.substr(0, 40)) + "'");
     const std::string_view prefix = keyword.substr(0, off);
     if (prefix.find_first_not_of("STCN") != std::string_view::npos)
       cursor_.fail("unsupported OFF variant '" + std::string(keyword) + "' (only [ST][C][N]OFF)");
@@ -108,7 +109,8 @@ class OffParser {
     Vec2f uv = Vec2f::Zero();
     if (header_.uvs) {
       if (rest.size() < 2) cursor_.fail("missing texture coordinates");
-      for (int k = 0; k < 2; ++k) uv[k] = static_cast<float>(number(rest[rest.size() - 2 + k], "texture coordinate"));
+      for (int k = 0; k < 2; ++k)
+        uv[k] = static_cast<float>(number(rest[rest.size() - 2 + k], "texture coordinate"));
       rest.resize(rest.size() - 2);
       soup_.uvs.push_back(uv);
     }
@@ -140,13 +142,14 @@ class OffParser {
     io::Tokens tokens(content_line("all faces are read"));
     const std::int64_t count = cursor_.integer(tokens, "face vertex count");
     if (count < 3) cursor_.fail("face with " + std::to_string(count) + " vertices, needs at least 3");
-    if (count > static_cast<std::int64_t>(tokens.rest().size())) cursor_.fail("face with fewer indices than its count");
+    if (count > static_cast<std::int64_t>(tokens.rest().size()))
+      cursor_.fail("face with fewer indices than its count");
     polygon_.clear();
     for (std::int64_t k = 0; k < count; ++k) {
       const std::int64_t index = cursor_.integer(tokens, "face vertex index");
       if (index < 0 || index >= header_.vertices)
-        cursor_.fail("face vertex index " + std::to_string(index) + " out of range: " +
-                     std::to_string(header_.vertices) + " vertices");
+        cursor_.fail("face vertex index " + std::to_string(index) +
+                     " out of range: " + std::to_string(header_.vertices) + " vertices");
       polygon_.push_back(static_cast<Index>(index));
     }
     append_fan(soup_.triangles, polygon_);
@@ -167,13 +170,15 @@ TriangleSoup read_off(const std::filesystem::path& path) {
 
 void write_off(const TriangleSoup& soup, const std::filesystem::path& path) {
   io::OutputFile out(path);
-  out << (soup.has_uvs() ? "ST" : "") << (soup.has_colors() ? "C" : "") << (soup.has_normals() ? "N" : "") << "OFF\n";
-  out << static_cast<std::int64_t>(soup.num_vertices()) << ' ' << static_cast<std::int64_t>(soup.num_triangles())
-      << " 0\n";
+  out << (soup.has_uvs() ? "ST" : "") << (soup.has_colors() ? "C" : "") << (soup.has_normals() ? "N" : "")
+      << "OFF\n";
+  out << static_cast<std::int64_t>(soup.num_vertices()) << ' '
+      << static_cast<std::int64_t>(soup.num_triangles()) << " 0\n";
   for (std::size_t v = 0; v < soup.num_vertices(); ++v) {
     const Vec3d& p = soup.positions[v];
     out << p.x() << ' ' << p.y() << ' ' << p.z();
-    if (soup.has_normals()) out << ' ' << soup.normals[v].x() << ' ' << soup.normals[v].y() << ' ' << soup.normals[v].z();
+    if (soup.has_normals())
+      out << ' ' << soup.normals[v].x() << ' ' << soup.normals[v].y() << ' ' << soup.normals[v].z();
     if (soup.has_colors())
       for (int k = 0; k < 4; ++k) out << ' ' << soup.colors[v][k];
     if (soup.has_uvs()) out << ' ' << soup.uvs[v].x() << ' ' << soup.uvs[v].y();

@@ -29,10 +29,27 @@ namespace {
 enum Role { x, y, z, nx, ny, nz, u, v, red, green, blue, alpha, role_count };
 
 constexpr std::array<std::pair<const char*, Role>, 22> kRoleNames{{
-    {"x", x}, {"y", y}, {"z", z}, {"nx", nx}, {"ny", ny}, {"nz", nz},
-    {"s", u}, {"t", v}, {"u", u}, {"v", v}, {"texture_u", u}, {"texture_v", v},
-    {"texture_s", u}, {"texture_t", v}, {"red", red}, {"green", green}, {"blue", blue},
-    {"alpha", alpha}, {"diffuse_red", red}, {"diffuse_green", green}, {"diffuse_blue", blue},
+    {"x", x},
+    {"y", y},
+    {"z", z},
+    {"nx", nx},
+    {"ny", ny},
+    {"nz", nz},
+    {"s", u},
+    {"t", v},
+    {"u", u},
+    {"v", v},
+    {"texture_u", u},
+    {"texture_v", v},
+    {"texture_s", u},
+    {"texture_t", v},
+    {"red", red},
+    {"green", green},
+    {"blue", blue},
+    {"alpha", alpha},
+    {"diffuse_red", red},
+    {"diffuse_green", green},
+    {"diffuse_blue", blue},
     {"diffuse_alpha", alpha},
 }};
 
@@ -44,10 +61,14 @@ int role_of(const std::string& name) {
 
 double color_scale(PlyType type) {
   switch (type) {
-    case PlyType::uint8: return 1.0 / 255.0;
-    case PlyType::uint16: return 1.0 / 65535.0;
-    case PlyType::uint32: return 1.0 / 4294967295.0;
-    default: return 1.0;
+    case PlyType::uint8:
+      return 1.0 / 255.0;
+    case PlyType::uint16:
+      return 1.0 / 65535.0;
+    case PlyType::uint32:
+      return 1.0 / 4294967295.0;
+    default:
+      return 1.0;
   }
 }
 
@@ -105,7 +126,9 @@ class PlyBodyReader {
       soup_.positions.emplace_back(value[x], value[y], value[z]);
       if (normals) soup_.normals.emplace_back(float(value[nx]), float(value[ny]), float(value[nz]));
       if (uvs) soup_.uvs.emplace_back(float(value[u]), float(value[v]));
-      if (colors) soup_.colors.emplace_back(float(value[red]), float(value[green]), float(value[blue]), float(value[alpha]));
+      if (colors)
+        soup_.colors.emplace_back(float(value[red]), float(value[green]), float(value[blue]),
+                                  float(value[alpha]));
     }
   }
 
@@ -142,7 +165,9 @@ class PlyBodyReader {
   }
 
   void append_polygon(std::uint64_t face) {
-    if (list_.size() < 3) source_.fail("face " + std::to_string(face) + " has " + std::to_string(list_.size()) + " vertices, needs at least 3");
+    if (list_.size() < 3)
+      source_.fail("face " + std::to_string(face) + " has " + std::to_string(list_.size()) +
+                   " vertices, needs at least 3");
     polygon_.clear();
     for (std::int64_t index : list_) polygon_.push_back(to_index(index));
     append_fan(soup_.triangles, polygon_);
@@ -172,8 +197,8 @@ class PlyBodyReader {
     for (std::size_t f = 0; f < soup_.triangles.size(); ++f)
       for (Index i : soup_.triangles[f])
         if (i >= n)
-          source_.fail("a face refers to vertex " + std::to_string(i) + " but there are only " + std::to_string(n) +
-                       " vertices");
+          source_.fail("a face refers to vertex " + std::to_string(i) + " but there are only " +
+                       std::to_string(n) + " vertices");
   }
 
   void skip_property(const PlyProperty& p) {
@@ -208,9 +233,12 @@ TriangleSoup read_ply(const std::filesystem::path& path) {
   const char* body = bytes.data() + header.body_offset;
   const std::size_t size = bytes.size() - header.body_offset;
   switch (header.encoding) {
-    case PlyEncoding::ascii: return read_body(header, PlyAsciiSource(name, body, size));
-    case PlyEncoding::binary_little_endian: return read_body(header, PlyBinarySource(name, body, size, false));
-    case PlyEncoding::binary_big_endian: return read_body(header, PlyBinarySource(name, body, size, true));
+    case PlyEncoding::ascii:
+      return read_body(header, PlyAsciiSource(name, body, size));
+    case PlyEncoding::binary_little_endian:
+      return read_body(header, PlyBinarySource(name, body, size, false));
+    case PlyEncoding::binary_big_endian:
+      return read_body(header, PlyBinarySource(name, body, size, true));
   }
   throw InputError(name, "unknown PLY encoding");
 }

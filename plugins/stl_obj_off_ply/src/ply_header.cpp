@@ -9,11 +9,21 @@ namespace mr::plugins::stl_obj_off_ply {
 namespace {
 
 constexpr std::array<std::pair<const char*, PlyType>, 16> kTypeNames{{
-    {"char", PlyType::int8},     {"int8", PlyType::int8},       {"uchar", PlyType::uint8},
-    {"uint8", PlyType::uint8},   {"short", PlyType::int16},     {"int16", PlyType::int16},
-    {"ushort", PlyType::uint16}, {"uint16", PlyType::uint16},   {"int", PlyType::int32},
-    {"int32", PlyType::int32},   {"uint", PlyType::uint32},     {"uint32", PlyType::uint32},
-    {"float", PlyType::float32}, {"float32", PlyType::float32}, {"double", PlyType::float64},
+    {"char", PlyType::int8},
+    {"int8", PlyType::int8},
+    {"uchar", PlyType::uint8},
+    {"uint8", PlyType::uint8},
+    {"short", PlyType::int16},
+    {"int16", PlyType::int16},
+    {"ushort", PlyType::uint16},
+    {"uint16", PlyType::uint16},
+    {"int", PlyType::int32},
+    {"int32", PlyType::int32},
+    {"uint", PlyType::uint32},
+    {"uint32", PlyType::uint32},
+    {"float", PlyType::float32},
+    {"float32", PlyType::float32},
+    {"double", PlyType::float64},
     {"float64", PlyType::float64},
 }};
 
@@ -52,7 +62,8 @@ void parse_region_comment(const io::TextCursor& cursor, io::Tokens& tokens, PlyH
   if (tokens.next() != "region") return;
   std::int64_t id = 0;
   if (!io::parse_integer(tokens.next(), id) || id < 0) return;
-  if (static_cast<std::size_t>(id) >= kMaxRegionId) cursor.fail("region id " + std::to_string(id) + " too large");
+  if (static_cast<std::size_t>(id) >= kMaxRegionId)
+    cursor.fail("region id " + std::to_string(id) + " too large");
   if (header.region_names.size() <= static_cast<std::size_t>(id)) header.region_names.resize(id + 1);
   header.region_names[id] = std::string(io::trim(tokens.rest()));
 }
@@ -61,10 +72,18 @@ void parse_region_comment(const io::TextCursor& cursor, io::Tokens& tokens, PlyH
 
 std::size_t ply_type_size(PlyType type) {
   switch (type) {
-    case PlyType::int8: case PlyType::uint8: return 1;
-    case PlyType::int16: case PlyType::uint16: return 2;
-    case PlyType::int32: case PlyType::uint32: case PlyType::float32: return 4;
-    case PlyType::float64: return 8;
+    case PlyType::int8:
+    case PlyType::uint8:
+      return 1;
+    case PlyType::int16:
+    case PlyType::uint16:
+      return 2;
+    case PlyType::int32:
+    case PlyType::uint32:
+    case PlyType::float32:
+      return 4;
+    case PlyType::float64:
+      return 8;
   }
   return 0;
 }

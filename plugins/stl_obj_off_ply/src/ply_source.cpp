@@ -26,7 +26,8 @@ T byte_swapped(T value) {
 
 void PlyBinarySource::check_count(const PlyElement& element) const {
   const std::uint64_t size = element.min_binary_size();
-  if (size > 0 && element.count > reader_.remaining() / size) fail(count_problem(element, reader_.remaining()));
+  if (size > 0 && element.count > reader_.remaining() / size)
+    fail(count_problem(element, reader_.remaining()));
 }
 
 template <class T>
@@ -38,14 +39,22 @@ T PlyBinarySource::raw(const char* what) {
 double PlyBinarySource::number(PlyType type) {
   constexpr const char* what = "a PLY property value (the body is truncated)";
   switch (type) {
-    case PlyType::int8: return raw<std::int8_t>(what);
-    case PlyType::uint8: return raw<std::uint8_t>(what);
-    case PlyType::int16: return raw<std::int16_t>(what);
-    case PlyType::uint16: return raw<std::uint16_t>(what);
-    case PlyType::int32: return raw<std::int32_t>(what);
-    case PlyType::uint32: return raw<std::uint32_t>(what);
-    case PlyType::float32: return raw<float>(what);
-    case PlyType::float64: return raw<double>(what);
+    case PlyType::int8:
+      return raw<std::int8_t>(what);
+    case PlyType::uint8:
+      return raw<std::uint8_t>(what);
+    case PlyType::int16:
+      return raw<std::int16_t>(what);
+    case PlyType::uint16:
+      return raw<std::uint16_t>(what);
+    case PlyType::int32:
+      return raw<std::int32_t>(what);
+    case PlyType::uint32:
+      return raw<std::uint32_t>(what);
+    case PlyType::float32:
+      return raw<float>(what);
+    case PlyType::float64:
+      return raw<double>(what);
   }
   return 0;
 }
@@ -53,13 +62,20 @@ double PlyBinarySource::number(PlyType type) {
 std::int64_t PlyBinarySource::integer(PlyType type) {
   constexpr const char* what = "a PLY property value (the body is truncated)";
   switch (type) {
-    case PlyType::int8: return raw<std::int8_t>(what);
-    case PlyType::uint8: return raw<std::uint8_t>(what);
-    case PlyType::int16: return raw<std::int16_t>(what);
-    case PlyType::uint16: return raw<std::uint16_t>(what);
-    case PlyType::int32: return raw<std::int32_t>(what);
-    case PlyType::uint32: return raw<std::uint32_t>(what);
-    default: break;
+    case PlyType::int8:
+      return raw<std::int8_t>(what);
+    case PlyType::uint8:
+      return raw<std::uint8_t>(what);
+    case PlyType::int16:
+      return raw<std::int16_t>(what);
+    case PlyType::uint16:
+      return raw<std::uint16_t>(what);
+    case PlyType::int32:
+      return raw<std::int32_t>(what);
+    case PlyType::uint32:
+      return raw<std::uint32_t>(what);
+    default:
+      break;
   }
   const double value = number(type);
   if (!(std::abs(value) < 9e15) || value != std::floor(value))
@@ -83,7 +99,8 @@ void PlyBinarySource::skip(PlyType type, std::int64_t count) {
 
 void PlyAsciiSource::check_count(const PlyElement& element) const {
   const std::uint64_t values = element.properties.size();
-  if (values > 0 && element.count > (size_ - pos_ + 1) / (2 * values)) fail(count_problem(element, size_ - pos_));
+  if (values > 0 && element.count > (size_ - pos_ + 1) / (2 * values))
+    fail(count_problem(element, size_ - pos_));
 }
 
 void PlyAsciiSource::fail(const std::string& problem) const {

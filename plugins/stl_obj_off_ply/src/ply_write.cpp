@@ -25,7 +25,8 @@ std::uint8_t to_byte(float channel) {
 // A region name as one UTF-8 line.
 std::string one_line(std::string_view name) {
   std::string text = io::as_utf8(name);
-  std::replace_if(text.begin(), text.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  std::replace_if(
+      text.begin(), text.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
   return text;
 }
 
@@ -33,8 +34,8 @@ void write_header(const TriangleSoup& soup, io::OutputFile& out, bool binary) {
   out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\n";
   out << "comment written by meshrepair\n";
   for (std::size_t r = 0; r < soup.region_names.size(); ++r)
-    out << "comment region " << static_cast<std::int64_t>(r) << ' ' << std::string_view(one_line(soup.region_names[r]))
-        << '\n';
+    out << "comment region " << static_cast<std::int64_t>(r) << ' '
+        << std::string_view(one_line(soup.region_names[r])) << '\n';
   out << "element vertex " << static_cast<std::int64_t>(soup.num_vertices()) << '\n';
   out << "property double x\nproperty double y\nproperty double z\n";
   if (soup.has_normals()) out << "property float nx\nproperty float ny\nproperty float nz\n";

@@ -134,9 +134,11 @@ TriangleSoup weld_triangle_corners(const std::vector<Vec3d>& corners) {
   });
 }
 
-TriangleSoup weld_float_corners(const char* records, std::size_t count, std::size_t record_size, std::size_t offset) {
+TriangleSoup weld_float_corners(const char* records, std::size_t count, std::size_t record_size,
+                                std::size_t offset) {
   return weld<float, std::uint32_t>(count, [&](std::size_t c, float* xyz) {
-    std::memcpy(xyz, records + (c / 3) * record_size + offset + (c % 3) * 3 * sizeof(float), 3 * sizeof(float));
+    std::memcpy(xyz, records + (c / 3) * record_size + offset + (c % 3) * 3 * sizeof(float),
+                3 * sizeof(float));
   });
 }
 

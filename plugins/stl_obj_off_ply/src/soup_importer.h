@@ -42,6 +42,7 @@ TriangleSoup weld_triangle_corners(const std::vector<Vec3d>& corners);
 
 /// The same for float corners stored in fixed-size records (binary STL
 /// facets): record i holds triangle i's three corners as 9 floats at `offset`.
-TriangleSoup weld_float_corners(const char* records, std::size_t count, std::size_t record_size, std::size_t offset);
+TriangleSoup weld_float_corners(const char* records, std::size_t count, std::size_t record_size,
+                                std::size_t offset);
 
 }  // namespace mr::plugins::stl_obj_off_ply

@@ -35,9 +35,8 @@ bool looks_like_ascii(const std::vector<char>& bytes) {
   const std::size_t start = text.find_first_not_of(" \t\r\n");
   if (start == std::string_view::npos || !io::istarts_with(text.substr(start), "solid")) return false;
   const std::string_view sample = text.substr(0, 1024);
-  return std::none_of(sample.begin(), sample.end(), [](char c) {
-    return static_cast<unsigned char>(c) < 9 || c == 127;
-  });
+  return std::none_of(sample.begin(), sample.end(),
+                      [](char c) { return static_cast<unsigned char>(c) < 9 || c == 127; });
 }
 
 TriangleSoup read_binary_stl(const std::string& path, const std::vector<char>& bytes) {
@@ -104,7 +103,8 @@ class AsciiStlParser {
       for (int k = 0; k < 3; ++k) p[k] = coordinate(tokens.next());
       loop_.push_back(p.cast<double>());
     }
-    if (loop_.size() < 3) cursor_.fail("facet with " + std::to_string(loop_.size()) + " vertices, needs at least 3");
+    if (loop_.size() < 3)
+      cursor_.fail("facet with " + std::to_string(loop_.size()) + " vertices, needs at least 3");
     expect_line("endfacet", {});
     for (std::size_t i = 1; i + 1 < loop_.size(); ++i) {
       corners_.insert(corners_.end(), {loop_[0], loop_[i], loop_[i + 1]});
@@ -119,7 +119,8 @@ class AsciiStlParser {
     if (token.empty()) cursor_.fail("missing vertex coordinate");
     if (!io::parse_number(token, value))
       cursor_.fail(io::quoted(token) + " is not a number (vertex coordinate)");
-    if (!std::isfinite(value)) cursor_.fail("vertex coordinate is not finite (NaN, Inf or beyond float range)");
+    if (!std::isfinite(value))
+      cursor_.fail("vertex coordinate is not finite (NaN, Inf or beyond float range)");
     return value;
   }
 
@@ -144,8 +145,8 @@ class AsciiStlParser {
 
 TriangleSoup read_stl(const std::filesystem::path& path) {
   const std::vector<char> bytes = io::read_file_bytes(path);
-  const bool exact_binary_size =
-      bytes.size() >= kHeaderSize + 4 && kHeaderSize + 4 + binary_facet_count(bytes) * kFacetSize == bytes.size();
+  const bool exact_binary_size = bytes.size() >= kHeaderSize + 4 &&
+                                 kHeaderSize + 4 + binary_facet_count(bytes) * kFacetSize == bytes.size();
   if (!exact_binary_size && looks_like_ascii(bytes))
     return AsciiStlParser(path.string(), std::string_view(bytes.data(), bytes.size())).parse();
   if (bytes.size() < kHeaderSize + 4)

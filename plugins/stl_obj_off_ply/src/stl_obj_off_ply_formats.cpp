@@ -29,31 +29,29 @@ io::Format surface_format(std::string name, std::string extension, std::string d
 void register_stl_obj_off_ply_formats(io::Registry& registry) {
   io::Format stl = surface_format("stl", ".stl", "STL, binary (default) or ASCII; corners welded on read");
   stl.read_surface = [](const std::filesystem::path& path, const io::ReadOptions&) { return read_stl(path); };
-  stl.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path, const io::WriteOptions& options) {
-    write_stl(soup, path, options.binary);
+  stl.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path,
+                         const io::WriteOptions& options) { write_stl(soup, path, options.binary); };
+  stl.position_grid = [](const io::WriteOptions&, const Vec3d&, const Vec3d&) {
+    return CoordinateGrid::float32();
   };
-  stl.position_grid = [](const io::WriteOptions&, const Vec3d&, const Vec3d&) { return CoordinateGrid::float32(); };
   registry.add(std::move(stl));
 
   io::Format obj = surface_format("obj", ".obj", "Wavefront OBJ with normals, uvs and usemtl regions");
   obj.read_surface = [](const std::filesystem::path& path, const io::ReadOptions&) { return read_obj(path); };
-  obj.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path, const io::WriteOptions&) {
-    write_obj(soup, path);
-  };
+  obj.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path,
+                         const io::WriteOptions&) { write_obj(soup, path); };
   registry.add(std::move(obj));
 
   io::Format off = surface_format("off", ".off", "Object File Format (OFF, COFF, NOFF, STOFF)");
   off.read_surface = [](const std::filesystem::path& path, const io::ReadOptions&) { return read_off(path); };
-  off.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path, const io::WriteOptions&) {
-    write_off(soup, path);
-  };
+  off.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path,
+                         const io::WriteOptions&) { write_off(soup, path); };
   registry.add(std::move(off));
 
   io::Format ply = surface_format("ply", ".ply", "Stanford PLY, binary little endian (default) or ASCII");
   ply.read_surface = [](const std::filesystem::path& path, const io::ReadOptions&) { return read_ply(path); };
-  ply.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path, const io::WriteOptions& options) {
-    write_ply(soup, path, options.binary);
-  };
+  ply.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path,
+                         const io::WriteOptions& options) { write_ply(soup, path, options.binary); };
   registry.add(std::move(ply));
 }
 

@@ -28,18 +28,39 @@ int skipped_entry_size(std::string_view keyword, int dimension) {
     const char* keyword;
     int size;
   };
-  static constexpr Entry kSizes[] = {
-      {"Edges", 3},          {"Corners", 1},          {"Ridges", 1},
-      {"RequiredVertices", 1}, {"RequiredEdges", 1},  {"RequiredTriangles", 1},
-      {"RequiredQuadrilaterals", 1}, {"RequiredTetrahedra", 1}, {"Quadrilaterals", 5},
-      {"Hexahedra", 9},      {"Prisms", 7},           {"Pyramids", 6},
-      {"EdgesP2", 4},        {"TrianglesP2", 7},      {"QuadrilateralsQ2", 10},
-      {"TetrahedraP2", 11},  {"HexahedraQ2", 28},     {"Tangents", -2},
-      {"Normals", -2},       {"NormalAtVertices", 2}, {"TangentAtVertices", 2},
-      {"TangentAtEdges", 3}, {"NormalAtTriangleVertices", 3}, {"NormalAtQuadrilateralVertices", 3},
-      {"SubDomainFromMesh", 4}, {"SubDomainFromGeom", 4}, {"VertexOnGeometricVertex", 2},
-      {"VertexOnGeometricEdge", 3}, {"VertexOnGeometricTriangle", 4}, {"EdgeOnGeometricEdge", 2},
-      {"Crack", 2},          {"Identifier", 0},       {"Geometry", 0}};
+  static constexpr Entry kSizes[] = {{"Edges", 3},
+                                     {"Corners", 1},
+                                     {"Ridges", 1},
+                                     {"RequiredVertices", 1},
+                                     {"RequiredEdges", 1},
+                                     {"RequiredTriangles", 1},
+                                     {"RequiredQuadrilaterals", 1},
+                                     {"RequiredTetrahedra", 1},
+                                     {"Quadrilaterals", 5},
+                                     {"Hexahedra", 9},
+                                     {"Prisms", 7},
+                                     {"Pyramids", 6},
+                                     {"EdgesP2", 4},
+                                     {"TrianglesP2", 7},
+                                     {"QuadrilateralsQ2", 10},
+                                     {"TetrahedraP2", 11},
+                                     {"HexahedraQ2", 28},
+                                     {"Tangents", -2},
+                                     {"Normals", -2},
+                                     {"NormalAtVertices", 2},
+                                     {"TangentAtVertices", 2},
+                                     {"TangentAtEdges", 3},
+                                     {"NormalAtTriangleVertices", 3},
+                                     {"NormalAtQuadrilateralVertices", 3},
+                                     {"SubDomainFromMesh", 4},
+                                     {"SubDomainFromGeom", 4},
+                                     {"VertexOnGeometricVertex", 2},
+                                     {"VertexOnGeometricEdge", 3},
+                                     {"VertexOnGeometricTriangle", 4},
+                                     {"EdgeOnGeometricEdge", 2},
+                                     {"Crack", 2},
+                                     {"Identifier", 0},
+                                     {"Geometry", 0}};
   for (const Entry& e : kSizes)
     if (equals_ignoring_case(keyword, e.keyword)) return e.size == -2 ? dimension : e.size;
   return -1;
@@ -53,7 +74,8 @@ class MeditReader {
     if (!equals_ignoring_case(cursor_.token_or_empty(), "MeshVersionFormatted"))
       cursor_.fail("not a Medit mesh file (it does not start with MeshVersionFormatted)");
     const std::int64_t version = cursor_.signed_integer("MeshVersionFormatted");
-    if (version < 1 || version > 4) cursor_.fail("unsupported MeshVersionFormatted " + std::to_string(version));
+    if (version < 1 || version > 4)
+      cursor_.fail("unsupported MeshVersionFormatted " + std::to_string(version));
     while (true) {
       const std::string_view keyword = cursor_.token_or_empty();
       if (keyword.empty() || equals_ignoring_case(keyword, "End")) break;
@@ -104,7 +126,8 @@ class MeditReader {
   // kept as written, even when negatively oriented: orientation is a contract
   // checked by the caller, not something a reader repairs silently.
   template <std::size_t N>
-  void read_cells(std::vector<std::array<Index, N>>& cells, std::vector<std::int32_t>& labels, const char* what) {
+  void read_cells(std::vector<std::array<Index, N>>& cells, std::vector<std::int32_t>& labels,
+                  const char* what) {
     if (!seen_vertices_) cursor_.fail(std::string(what) + " before Vertices");
     const std::uint64_t n = count(what, N + 1);
     cells.reserve(cells.size() + n);
@@ -116,7 +139,8 @@ class MeditReader {
         const std::uint64_t index = cursor_.unsigned_integer("vertex index");
         if (index == 0 || index > vertices)
           cursor_.fail(std::string(what) + " entry " + std::to_string(e + 1) + " refers to vertex " +
-                       std::to_string(index) + " but the vertices are numbered 1 to " + std::to_string(vertices));
+                       std::to_string(index) + " but the vertices are numbered 1 to " +
+                       std::to_string(vertices));
         v = static_cast<Index>(index - 1);
       }
       cells.push_back(cell);

@@ -80,7 +80,8 @@ void read_binary_elements(io::TextCursor& cursor, const MshEncoding& encoding, M
     if (block <= 0 || static_cast<std::uint64_t>(block) > count - read || tag_count < 0)
       cursor.fail("corrupt element block header (" + std::to_string(block) + " elements, " +
                   std::to_string(tag_count) + " tags)");
-    cursor.require(static_cast<std::uint64_t>(block), 4 * (1 + std::uint64_t(tag_count) + node_count), "element block");
+    cursor.require(static_cast<std::uint64_t>(block), 4 * (1 + std::uint64_t(tag_count) + node_count),
+                   "element block");
     for (std::int32_t e = 0; e < block; ++e) {
       source.int32("element number");
       std::int32_t physical = 0, elementary = 0;
@@ -93,7 +94,8 @@ void read_binary_elements(io::TextCursor& cursor, const MshEncoding& encoding, M
         const std::int32_t node = source.int32("element node number");
         if (k < 4) nodes[k] = static_cast<std::uint32_t>(node);
       }
-      content.add_element(type, nodes.data(), label_from_tags(physical, elementary, std::uint64_t(tag_count)));
+      content.add_element(type, nodes.data(),
+                          label_from_tags(physical, elementary, std::uint64_t(tag_count)));
     }
     read += static_cast<std::uint64_t>(block);
   }

@@ -18,7 +18,8 @@ constexpr Index kNoNode = std::numeric_limits<Index>::max();
 class NodeIndex {
  public:
   NodeIndex(const std::vector<std::uint64_t>& tags, const std::string& path) {
-    if (tags.size() >= kNoNode) throw InputError(path, "too many nodes (" + std::to_string(tags.size()) + ")");
+    if (tags.size() >= kNoNode)
+      throw InputError(path, "too many nodes (" + std::to_string(tags.size()) + ")");
     if (tags.empty()) return;
     first_ = tags.front();
     count_ = tags.size();
@@ -86,11 +87,11 @@ int msh_element_node_count(int type) {
   // gmsh's element type numbers (GmshDefines.h). 32 and 33 changed meaning
   // between gmsh versions and 34, 35, 67-70 have no fixed size: all rejected.
   static constexpr int kCounts[] = {
-      0,  2,  3,  4,  4,  8,  6,  5,  3,  6,  9,   10,  27,  18,  14, 1,   8,  20,  15,  13,
-      9,  10, 12, 15, 15, 21, 4,  5,  6,  20, 35,  56,  0,   0,   0,  0,   16, 25,  36,  12,
-      16, 20, 28, 36, 45, 55, 66, 49, 64, 81, 100, 121, 18,  21,  24, 27,  30, 24,  28,  32,
-      36, 40, 7,  8,  9,  10, 11, 0,  0,  0,  0,   84,  120, 165, 220, 286, 0,  0,   0,   74,
-      100, 130, 164, 202, 1, 1, 1, 1, 1, 1, 40, 75, 64, 125, 216, 343, 512, 729, 1000};
+      0,   2,   3,   4,   4,  8,  6,  5,  3,  6,  9,   10,  27,  18,  14,  1,   8,   20,  15,  13,
+      9,   10,  12,  15,  15, 21, 4,  5,  6,  20, 35,  56,  0,   0,   0,   0,   16,  25,  36,  12,
+      16,  20,  28,  36,  45, 55, 66, 49, 64, 81, 100, 121, 18,  21,  24,  27,  30,  24,  28,  32,
+      36,  40,  7,   8,   9,  10, 11, 0,  0,  0,  0,   84,  120, 165, 220, 286, 0,   0,   0,   74,
+      100, 130, 164, 202, 1,  1,  1,  1,  1,  1,  40,  75,  64,  125, 216, 343, 512, 729, 1000};
   if (type < 0 || type >= static_cast<int>(std::size(kCounts))) return 0;
   return kCounts[type];
 }

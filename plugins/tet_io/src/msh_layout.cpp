@@ -18,7 +18,8 @@ MshDimension make_dimension(const std::vector<std::int32_t>& labels, std::size_t
   const bool labelled = !labels.empty();
   auto label_of = [&](std::size_t i) { return labelled ? labels[i] : 1; };
   std::int64_t next_tag = 1;
-  for (std::size_t i = 0; i < count; ++i) next_tag = std::max<std::int64_t>(next_tag, std::int64_t(label_of(i)) + 1);
+  for (std::size_t i = 0; i < count; ++i)
+    next_tag = std::max<std::int64_t>(next_tag, std::int64_t(label_of(i)) + 1);
   std::map<std::int32_t, std::int32_t> tag_of_label;
   for (std::size_t i = 0; i < count; ++i) {
     const std::int32_t label = label_of(i);

@@ -40,7 +40,8 @@ MshHeader read_header(io::TextCursor& cursor) {
   }
   const std::uint64_t file_type = cursor.unsigned_integer("file type");
   const std::uint64_t data_size = cursor.unsigned_integer("data size");
-  if (file_type > 1) cursor.fail("unknown file type " + std::to_string(file_type) + " (0 = ASCII, 1 = binary)");
+  if (file_type > 1)
+    cursor.fail("unknown file type " + std::to_string(file_type) + " (0 = ASCII, 1 = binary)");
   header.encoding.binary = file_type == 1;
   if (header.encoding.binary) {
     const bool supported = data_size == 8 || (header.major == 4 && data_size == 4);
@@ -65,7 +66,8 @@ class MshReader {
  private:
   void read_section() {
     const std::string name(cursor_.token("section name"));
-    if (name.size() < 2 || name[0] != '$') cursor_.fail("expected a section such as $Nodes, found '" + name.substr(0, 40) + "'");
+    if (name.size() < 2 || name[0] != '$')
+      cursor_.fail("expected a section such as $Nodes, found '" + name.substr(0, 40) + "'");
     const std::string end = "$End" + name.substr(1);
     if (!read_known_section(name)) {
       if (!cursor_.skip_past(end)) cursor_.fail("section " + name + " has no " + end);

@@ -13,7 +13,8 @@ namespace mr::plugins::tet {
 using EntityLabels = std::unordered_map<std::uint64_t, std::int32_t>;
 
 inline std::uint64_t entity_key(std::int32_t dim, std::int32_t tag) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(dim)) << 32) | static_cast<std::uint32_t>(tag);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(dim)) << 32) |
+         static_cast<std::uint32_t>(tag);
 }
 
 void read_msh4_entities(io::TextCursor& cursor, const MshEncoding& encoding, EntityLabels& labels);

@@ -84,7 +84,8 @@ void write_entities(MshOutput& out, const MshDimension& dimension, const std::ar
 
 void write_msh4_entities(MshOutput& out, const MshLayout& layout) {
   out.begin_section("$Entities");
-  for (std::size_t count : {std::size_t(0), std::size_t(0), layout.surfaces.entities.size(), layout.volumes.entities.size()})
+  for (std::size_t count :
+       {std::size_t(0), std::size_t(0), layout.surfaces.entities.size(), layout.volumes.entities.size()})
     out.size(count);
   out.end_line();
   write_entities(out, layout.surfaces, layout.bounding_box);
@@ -112,8 +113,9 @@ void write_msh4_nodes(MshOutput& out, const TetMesh& mesh, const MshLayout& layo
 }
 
 template <std::size_t N>
-void write_msh4_blocks(MshOutput& out, const MshDimension& dimension, const std::vector<std::array<Index, N>>& cells,
-                       int dim, int type, std::size_t& next_tag) {
+void write_msh4_blocks(MshOutput& out, const MshDimension& dimension,
+                       const std::vector<std::array<Index, N>>& cells, int dim, int type,
+                       std::size_t& next_tag) {
   for (const MshBlock& block : dimension.blocks) {
     out.int32(dim), out.int32(block.entity_tag), out.int32(type), out.size(block.end - block.begin);
     out.end_line();
@@ -142,7 +144,8 @@ void write_msh4_elements(MshOutput& out, const TetMesh& mesh, const MshLayout& l
 void check_int32_counts(const TetMesh& mesh, const std::filesystem::path& path) {
   constexpr std::size_t limit = std::numeric_limits<std::int32_t>::max();
   if (mesh.positions.size() >= limit || mesh.tets.size() + mesh.faces.size() >= limit)
-    throw RunError("cannot write " + path.string() + ": MSH 2.2 numbers nodes and elements with 32-bit ints; use 4.1");
+    throw RunError("cannot write " + path.string() +
+                   ": MSH 2.2 numbers nodes and elements with 32-bit ints; use 4.1");
 }
 
 void write_msh2_nodes(MshOutput& out, const TetMesh& mesh) {
@@ -159,8 +162,8 @@ void write_msh2_nodes(MshOutput& out, const TetMesh& mesh) {
 // Every element carries two tags: physical (the label, 0 if the mesh has no
 // labels) and elementary (the entity tag).
 template <std::size_t N>
-void write_msh2_cells(MshOutput& out, const MshDimension& dimension, const std::vector<std::array<Index, N>>& cells,
-                      int type, std::int32_t& next_number) {
+void write_msh2_cells(MshOutput& out, const MshDimension& dimension,
+                      const std::vector<std::array<Index, N>>& cells, int type, std::int32_t& next_number) {
   if (cells.empty()) return;
   if (out.binary()) out.int32(type), out.int32(static_cast<std::int32_t>(cells.size())), out.int32(2);
   for (const MshBlock& block : dimension.blocks) {

@@ -36,7 +36,8 @@ class Base64Writer {
     static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     for (int i = count; i < 3; ++i) carry_[i] = 0;
     const std::uint32_t v = (std::uint32_t(carry_[0]) << 16) | (std::uint32_t(carry_[1]) << 8) | carry_[2];
-    char quad[4] = {kAlphabet[(v >> 18) & 63], kAlphabet[(v >> 12) & 63], kAlphabet[(v >> 6) & 63], kAlphabet[v & 63]};
+    char quad[4] = {kAlphabet[(v >> 18) & 63], kAlphabet[(v >> 12) & 63], kAlphabet[(v >> 6) & 63],
+                    kAlphabet[v & 63]};
     if (count < 3) quad[3] = '=';
     if (count < 2) quad[2] = '=';
     out_.write_raw(quad, 4);

@@ -1,9 +1,9 @@
 #include "vdb_level_set.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <unordered_map>
-#include <algorithm>
 
 namespace mr::plugins::vdb {
 namespace {
@@ -11,7 +11,8 @@ namespace {
 struct PositionHash {
   std::size_t operator()(const Vec3d& p) const {
     std::size_t h = 0;
-    for (int i = 0; i < 3; ++i) h = h * 1000003u ^ std::hash<std::uint64_t>()(std::bit_cast<std::uint64_t>(p[i]));
+    for (int i = 0; i < 3; ++i)
+      h = h * 1000003u ^ std::hash<std::uint64_t>()(std::bit_cast<std::uint64_t>(p[i]));
     return h;
   }
 };

@@ -14,7 +14,9 @@ void register_vdb_formats(io::Registry& registry) {
     return vdb::read_level_set(path, options.level_set);
   };
   format.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path,
-                            const io::WriteOptions& options) { vdb::write_level_set(soup, path, options.level_set); };
+                            const io::WriteOptions& options) {
+    vdb::write_level_set(soup, path, options.level_set);
+  };
   registry.add(std::move(format));
 }
 

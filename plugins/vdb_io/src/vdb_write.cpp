@@ -18,8 +18,8 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
-#include <string_view>
 #include <string>
+#include <string_view>
 #include <unordered_set>
 
 namespace mr::plugins::vdb {
@@ -60,8 +60,8 @@ GridSpec validated_spec(const TriangleSoup& soup, const io::LevelSetWriteOptions
   double max_coordinate = 0.0;
   for (const Vec3d& p : soup.positions) max_coordinate = std::max(max_coordinate, p.cwiseAbs().maxCoeff());
   if (max_coordinate / spec.voxel_size > max_index_coordinate || max_coordinate > 1e30)
-    throw UsageError("the voxel size " + std::to_string(spec.voxel_size) + " is too small for coordinates up to " +
-                     std::to_string(max_coordinate));
+    throw UsageError("the voxel size " + std::to_string(spec.voxel_size) +
+                     " is too small for coordinates up to " + std::to_string(max_coordinate));
   const double band_voxels = (total_area(soup) / (spec.voxel_size * spec.voxel_size) + soup.num_triangles()) *
                              2.0 * (spec.half_width + 1.0);
   if (band_voxels > max_band_voxels)
@@ -70,7 +70,8 @@ GridSpec validated_spec(const TriangleSoup& soup, const io::LevelSetWriteOptions
   return spec;
 }
 
-FloatGrid::Ptr unsigned_band(const TriangleSoup& soup, const openvdb::math::Transform& xform, double half_width) {
+FloatGrid::Ptr unsigned_band(const TriangleSoup& soup, const openvdb::math::Transform& xform,
+                             double half_width) {
   std::vector<openvdb::Vec3s> points;
   points.reserve(soup.positions.size());
   for (const Vec3d& p : soup.positions) points.emplace_back(float(p.x()), float(p.y()), float(p.z()));
@@ -78,7 +79,7 @@ FloatGrid::Ptr unsigned_band(const TriangleSoup& soup, const openvdb::math::Tran
   triangles.reserve(soup.triangles.size());
   for (const Triangle& t : soup.triangles) triangles.emplace_back(t[0], t[1], t[2]);
   return openvdb::tools::meshToUnsignedDistanceField<FloatGrid>(xform, points, triangles, {},
-                                                                 static_cast<float>(half_width));
+                                                                static_cast<float>(half_width));
 }
 
 Vec3d world_position(const openvdb::math::Transform& xform, const Coord& ijk) {
@@ -96,7 +97,8 @@ void sign_band(FloatGrid& grid, const WindingNumberTree& winding) {
     for (std::size_t i = range.begin(); i != range.end(); ++i)
       for (auto it = leaves.leaf(i).beginValueOn(); it; ++it) {
         const float distance = std::abs(*it);
-        it.setValue(std::abs(winding.evaluate(world_position(xform, it.getCoord()))) > 0.5 ? -distance : distance);
+        it.setValue(std::abs(winding.evaluate(world_position(xform, it.getCoord()))) > 0.5 ? -distance
+                                                                                           : distance);
       }
   });
 }
@@ -116,7 +118,9 @@ BlockResult span_holes_in_block(const FloatGrid& band, const WindingNumberTree& 
                                 double half_width) {
   constexpr int padded = block_dim + 2;
   std::vector<double> w(padded * padded * padded);
-  const auto at = [&](int x, int y, int z) -> double& { return w[((x + 1) * padded + (y + 1)) * padded + (z + 1)]; };
+  const auto at = [&](int x, int y, int z) -> double& {
+    return w[((x + 1) * padded + (y + 1)) * padded + (z + 1)];
+  };
   for (int x = -1; x <= block_dim; ++x)
     for (int y = -1; y <= block_dim; ++y)
       for (int z = -1; z <= block_dim; ++z)
@@ -135,7 +139,8 @@ BlockResult span_holes_in_block(const FloatGrid& band, const WindingNumberTree& 
         const double inside_voxels = (at(x, y, z) - 0.5) / std::max(slope, 1e-12);
         if (std::abs(inside_voxels) >= half_width) continue;
         result.voxels.emplace_back(ijk, static_cast<float>(-inside_voxels * voxel));
-        const int faces[6] = {x == 0, x == block_dim - 1, y == 0, y == block_dim - 1, z == 0, z == block_dim - 1};
+        const int faces[6] = {x == 0, x == block_dim - 1, y == 0, y == block_dim - 1,
+                              z == 0, z == block_dim - 1};
         for (int f = 0; f < 6; ++f) result.grow_faces |= faces[f] << f;
       }
   return result;
@@ -167,7 +172,8 @@ void add_hole_spanning_band(FloatGrid& grid, const WindingNumberTree& winding, d
         if (visited.insert(neighbour).second) next.push_back(neighbour);
       }
     }
-    if (visited.size() > max_blocks) throw RunError("the level set of the holes of this mesh does not close up");
+    if (visited.size() > max_blocks)
+      throw RunError("the level set of the holes of this mesh does not close up");
     frontier = std::move(next);
   }
   auto accessor = grid.getAccessor();
@@ -207,7 +213,8 @@ void write_level_set(const TriangleSoup& soup, const std::filesystem::path& path
   ensure_openvdb_initialized();
   FloatGrid::Ptr grid;
   try {
-    grid = unsigned_band(soup, *openvdb::math::Transform::createLinearTransform(spec.voxel_size), spec.half_width);
+    grid = unsigned_band(soup, *openvdb::math::Transform::createLinearTransform(spec.voxel_size),
+                         spec.half_width);
     const WindingNumberTree winding(soup);
     sign_band(*grid, winding);
     if (has_oriented_boundary(soup)) add_hole_spanning_band(*grid, winding, spec.half_width);

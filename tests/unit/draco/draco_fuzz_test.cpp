@@ -36,7 +36,17 @@ std::vector<char> random_bytes(std::mt19937& rng, bool draco_header) {
   std::vector<char> bytes;
   if (draco_header) {
     // "DRACO", version 2.2, triangular mesh, sequential or edgebreaker, flags.
-    bytes = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, static_cast<char>(rng() % 2), 0, static_cast<char>(rng() % 2 ? 0x80 : 0)};
+    bytes = {'D',
+             'R',
+             'A',
+             'C',
+             'O',
+             2,
+             2,
+             1,
+             static_cast<char>(rng() % 2),
+             0,
+             static_cast<char>(rng() % 2 ? 0x80 : 0)};
   }
   const std::size_t length = rng() % 300;
   for (std::size_t i = 0; i < length; ++i) bytes.push_back(static_cast<char>(rng()));
@@ -48,7 +58,8 @@ std::vector<char> damaged(const std::vector<char>& valid, std::mt19937& rng) {
   const unsigned kind = rng() % 3;
   if (kind != 1) bytes.resize(rng() % bytes.size());  // truncate
   if (kind != 0 && !bytes.empty())
-    for (unsigned flips = 1 + rng() % 8; flips > 0; --flips) bytes[rng() % bytes.size()] ^= static_cast<char>(1u << (rng() % 8));
+    for (unsigned flips = 1 + rng() % 8; flips > 0; --flips)
+      bytes[rng() % bytes.size()] ^= static_cast<char>(1u << (rng() % 8));
   return bytes;
 }
 
@@ -61,7 +72,8 @@ TriangleSoup fuzz_model() {
   grid.colors.assign(grid.num_vertices(), Vec4f(1, 0, 0, 1));
   soup.append(grid);
   soup.face_regions.resize(soup.num_triangles());
-  for (std::size_t f = 0; f < soup.num_triangles(); ++f) soup.face_regions[f] = static_cast<std::int32_t>(f % 3);
+  for (std::size_t f = 0; f < soup.num_triangles(); ++f)
+    soup.face_regions[f] = static_cast<std::int32_t>(f % 3);
   return soup;
 }
 

@@ -100,7 +100,8 @@ TEST_CASE("we read the .drc files draco_encoder writes", "[draco]") {
 
   for (const char* level : {"0", "7", "10"}) {
     INFO("compression level " << level);
-    run_tool(encoder + " -cl " + level + " -qp 14 -i " + quoted(dir / "grid.ply") + " -o " + quoted(dir / "grid.drc"),
+    run_tool(encoder + " -cl " + level + " -qp 14 -i " + quoted(dir / "grid.ply") + " -o " +
+                 quoted(dir / "grid.drc"),
              dir / "log.txt");
     const TriangleSoup read = io::read_surface(registry, dir / "grid.drc");
     REQUIRE(read.num_triangles() == grid.num_triangles());

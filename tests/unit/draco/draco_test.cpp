@@ -7,7 +7,6 @@
 
 #include <catch2/catch.hpp>
 
-
 using namespace mr;
 using namespace mr::draco_test;
 
@@ -21,7 +20,8 @@ io::Registry drc_registry() {
 
 TriangleSoup roundtrip(const TriangleSoup& soup, const io::DracoOptions& options = {}) {
   const plugins::DracoEncoded encoded = plugins::encode_draco(soup, options);
-  return plugins::decode_draco(std::string_view(encoded.bytes.data(), encoded.bytes.size()), "memory", encoded.ids);
+  return plugins::decode_draco(std::string_view(encoded.bytes.data(), encoded.bytes.size()), "memory",
+                               encoded.ids);
 }
 
 }  // namespace
@@ -34,8 +34,8 @@ TEST_CASE("draco round trip keeps a cube's attributes within quantization error"
   CHECK(encoded.ids.normal >= 0);
   CHECK(encoded.ids.uv >= 0);
   CHECK(encoded.ids.color >= 0);
-  const TriangleSoup decoded =
-      plugins::decode_draco(std::string_view(encoded.bytes.data(), encoded.bytes.size()), "cube.drc", encoded.ids);
+  const TriangleSoup decoded = plugins::decode_draco(
+      std::string_view(encoded.bytes.data(), encoded.bytes.size()), "cube.drc", encoded.ids);
   REQUIRE(find_soup_inconsistency(decoded).empty());
   REQUIRE(decoded.num_vertices() == 8);
   CHECK(decoded.num_vertices() == encoded.num_points);

@@ -15,7 +15,8 @@ TriangleSoup cube_with_attributes() {
     const Vec3f centred = (p - Vec3d::Constant(0.5)).cast<float>();
     cube.normals.push_back(centred.normalized());
     cube.uvs.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()));
-    cube.colors.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()), 1.0f);
+    cube.colors.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()),
+                             1.0f);
   }
   return cube;
 }
@@ -28,7 +29,8 @@ TriangleSoup make_grid(int nx, int ny, double jitter) {
       // A deterministic pseudo-random offset per vertex.
       const double a = std::sin(i * 12.9898 + j * 78.233) * 43758.5453;
       const double offset = jitter * (a - std::floor(a) - 0.5);
-      grid.positions.emplace_back(i + offset, j - offset, 3.0 * std::sin(0.2 * i) * std::cos(0.15 * j) + offset);
+      grid.positions.emplace_back(i + offset, j - offset,
+                                  3.0 * std::sin(0.2 * i) * std::cos(0.15 * j) + offset);
     }
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
@@ -90,8 +92,8 @@ std::vector<Triangle> canonical_triangles(std::vector<Triangle> triangles) {
   return triangles;
 }
 
-std::vector<std::array<std::int64_t, 4>> canonical_region_triangles(const std::vector<Triangle>& triangles,
-                                                                    const std::vector<std::int32_t>& regions) {
+std::vector<std::array<std::int64_t, 4>> canonical_region_triangles(
+    const std::vector<Triangle>& triangles, const std::vector<std::int32_t>& regions) {
   std::vector<std::array<std::int64_t, 4>> result;
   for (std::size_t f = 0; f < triangles.size(); ++f) {
     const Triangle t = smallest_rotation(triangles[f]);

@@ -56,11 +56,13 @@ BruteHit brute_force(const mr::TriangleSoup& soup, const Vec3d& p) {
   BruteHit best;
   for (std::uint32_t t = 0; t < soup.triangles.size(); ++t) {
     const auto& tri = soup.triangles[t];
-    const double d = closest_on_triangle(p, soup.positions[tri[0]], soup.positions[tri[1]],
-                                         soup.positions[tri[2]])
-                         .squared_distance;
-    if (d < best.squared_distance) best = {d, {t}};
-    else if (d == best.squared_distance) best.nearest.push_back(t);
+    const double d =
+        closest_on_triangle(p, soup.positions[tri[0]], soup.positions[tri[1]], soup.positions[tri[2]])
+            .squared_distance;
+    if (d < best.squared_distance)
+      best = {d, {t}};
+    else if (d == best.squared_distance)
+      best.nearest.push_back(t);
   }
   return best;
 }

@@ -39,7 +39,8 @@ std::vector<Vec3d> dense_samples(const Vec3d& a, const Vec3d& b, const Vec3d& c,
   const int n = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
   std::vector<Vec3d> samples;
   for (int i = 0; i <= n; ++i) {
-    for (int j = 0; i + j <= n; ++j) samples.push_back(a + (double(i) / n) * (b - a) + (double(j) / n) * (c - a));
+    for (int j = 0; i + j <= n; ++j)
+      samples.push_back(a + (double(i) / n) * (b - a) + (double(j) / n) * (c - a));
   }
   return samples;
 }
@@ -140,7 +141,8 @@ TEST_CASE("envelope: a large triangle over a finely tessellated plane", "[envelo
   const auto grid = [&](bool with_hole) {
     mr::TriangleSoup soup;
     for (int i = 0; i <= kCells; ++i) {
-      for (int j = 0; j <= kCells; ++j) soup.positions.emplace_back(double(i) / kCells, double(j) / kCells, 0.0);
+      for (int j = 0; j <= kCells; ++j)
+        soup.positions.emplace_back(double(i) / kCells, double(j) / kCells, 0.0);
     }
     const auto id = [&](int i, int j) { return static_cast<mr::Index>(i * (kCells + 1) + j); };
     for (int i = 0; i < kCells; ++i) {
@@ -163,7 +165,7 @@ TEST_CASE("envelope: a large triangle over a finely tessellated plane", "[envelo
     REQUIRE(holed->is_inside(b));
     REQUIRE(holed->is_inside(c));
     CHECK_FALSE(holed->is_inside(a, b, c));
-    CHECK(holed->is_inside(a, c));  // the edge misses the hole
+    CHECK(holed->is_inside(a, c));                                            // the edge misses the hole
     CHECK_FALSE(holed->is_inside(Vec3d(0.45, 0.1, 0), Vec3d(0.45, 0.9, 0)));  // crosses it
   }
 }
@@ -178,13 +180,14 @@ TEST_CASE("envelope: long thin triangles and triangles over a corner", "[envelop
     CHECK_FALSE(envelope->is_inside(Vec3d(0.05, 0.5, 1 + h), Vec3d(1 + 2 * kEps, 0.5, 1 + h),
                                     Vec3d(0.5, 0.5001, 1 + h)));
     // A sliver standing on the surface, reaching 1.01 eps up at its far end only.
-    CHECK_FALSE(envelope->is_inside(Vec3d(0.05, 0.5, 1), Vec3d(0.95, 0.5, 1 + 1.01 * kEps),
-                                    Vec3d(0.5, 0.5001, 1)));
+    CHECK_FALSE(
+        envelope->is_inside(Vec3d(0.05, 0.5, 1), Vec3d(0.95, 0.5, 1 + 1.01 * kEps), Vec3d(0.5, 0.5001, 1)));
     // Hovering over the corner (1,1,1): flat at height 0.2 eps, reaching 0.3 eps
     // past the corner in x and y. Outside the cube the distance is convex, so
     // the corners are the farthest points: at most 0.36 eps < eps - r.
     const double z = 1 + 0.2 * kEps;
-    CHECK(envelope->is_inside(Vec3d(0.9, 0.9, z), Vec3d(1 + 0.3 * kEps, 0.9, z), Vec3d(0.9, 1 + 0.3 * kEps, z)));
+    CHECK(envelope->is_inside(Vec3d(0.9, 0.9, z), Vec3d(1 + 0.3 * kEps, 0.9, z),
+                              Vec3d(0.9, 1 + 0.3 * kEps, z)));
     // The same shape reaching 1.1 eps past the corner.
     CHECK_FALSE(envelope->is_inside(Vec3d(0.9, 0.9, z), Vec3d(1 + 1.1 * kEps, 1 + 0.5 * kEps, z),
                                     Vec3d(0.9, 1 + 1.1 * kEps, z)));
@@ -193,7 +196,8 @@ TEST_CASE("envelope: long thin triangles and triangles over a corner", "[envelop
     const Vec3d u = Vec3d(1, -1, 0).normalized();
     const Vec3d w = n.cross(u);
     const Vec3d center = Vec3d(1, 1, 1) + 1.05 * kEps * n;
-    CHECK_FALSE(envelope->is_inside(center + 0.1 * kEps * u, center + 0.1 * kEps * w, center - 0.1 * kEps * u));
+    CHECK_FALSE(
+        envelope->is_inside(center + 0.1 * kEps * u, center + 0.1 * kEps * w, center - 0.1 * kEps * u));
   }
 }
 

@@ -56,8 +56,8 @@ TEST_CASE("constructed intersection points lie exactly on the plane and the segm
     REQUIRE(orient3d(hx, q, r, s) == orient3d(x, ExactPoint3(q), ExactPoint3(r), ExactPoint3(s)));
     REQUIRE(orient3d(a, b, s, hx) == 0);  // collinear with a and b
     const std::optional<ExactPoint3> on_face = intersect_segment_triangle_point(a, b, p, q, r);
-    REQUIRE(on_face.has_value() == (intersect_segment_triangle(a, b, p, q, r).kind ==
-                                    SegmentTriangleKind::point));
+    REQUIRE(on_face.has_value() ==
+            (intersect_segment_triangle(a, b, p, q, r).kind == SegmentTriangleKind::point));
     if (on_face) REQUIRE(*on_face == x);
   }
   CHECK(constructed > 1000);
@@ -101,8 +101,7 @@ TEST_CASE("opposite_face keeps the orientation of the tet for every corner", "[k
   CHECK_THROWS_AS(opposite_face({0, 1, 2, 3}, 4), UsageError);
 }
 
-TEST_CASE("try_round accepts when safe and refuses when rounding flattens or flips a sliver",
-          "[kernel]") {
+TEST_CASE("try_round accepts when safe and refuses when rounding flattens or flips a sliver", "[kernel]") {
   // x = 1/3 exactly; its nearest double r = fl(1/3) is below 1/3.
   const double r = 1.0 / 3.0;
   const mpq_class third(1, 3);
@@ -148,10 +147,13 @@ TEST_CASE("try_round_vertex rounds mesh vertices against their incident tets", "
   const double r = 1.0 / 3.0;
   const mpq_class third(1, 3);
   // Vertex 0 is rational; tet 0 is a sliver against the face x = r, tet 1 is fine.
-  std::vector<HybridPoint> positions = {
-      HybridPoint::from_exact({third, third, third}),
-      Vec3d(r, 0, 0), Vec3d(r, 1, 0), Vec3d(r, 0, 1),
-      Vec3d(0, 0, 0), Vec3d(0, 1, 0), Vec3d(0, 0, 1)};
+  std::vector<HybridPoint> positions = {HybridPoint::from_exact({third, third, third}),
+                                        Vec3d(r, 0, 0),
+                                        Vec3d(r, 1, 0),
+                                        Vec3d(r, 0, 1),
+                                        Vec3d(0, 0, 0),
+                                        Vec3d(0, 1, 0),
+                                        Vec3d(0, 0, 1)};
   // Written with vertex 0 at different corners; both positively oriented.
   const Tet sliver = {1, 0, 2, 3};
   const Tet good = {4, 5, 6, 0};
@@ -192,8 +194,7 @@ TEST_CASE("hybrid predicates agree with rationals on random mixed inputs", "[ker
   }
 }
 
-TEST_CASE("intersection tests on rational points match the same configuration in doubles",
-          "[kernel]") {
+TEST_CASE("intersection tests on rational points match the same configuration in doubles", "[kernel]") {
   // Scaling by 1/3 preserves every incidence, but makes the points rational.
   std::mt19937_64 rng(17);
   std::uniform_int_distribution<int> coord(0, 3);
@@ -235,7 +236,9 @@ TEST_CASE("point boxes: a segment-plane box contains the exact point, box signs 
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   const auto random_point = [&] { return Vec3d(unit(rng), unit(rng), unit(rng)); };
-  const auto inside = [](const mpq_class& x, double lo, double hi) { return mpq_class(lo) <= x && x <= mpq_class(hi); };
+  const auto inside = [](const mpq_class& x, double lo, double hi) {
+    return mpq_class(lo) <= x && x <= mpq_class(hi);
+  };
   int certain = 0;
   for (int trial = 0; trial < 2000; ++trial) {
     const HybridPoint p = random_point(), q = random_point(), r = random_point();
@@ -263,7 +266,8 @@ TEST_CASE("point boxes: a segment-plane box contains the exact point, box signs 
   }
   CHECK(certain > 1000);
   // A box of a rational point holds it; a double's box is the point.
-  const HybridPoint third = HybridPoint::from_exact(ExactPoint3(mpq_class(1, 3), mpq_class(2, 3), mpq_class(-1, 3)));
+  const HybridPoint third =
+      HybridPoint::from_exact(ExactPoint3(mpq_class(1, 3), mpq_class(2, 3), mpq_class(-1, 3)));
   const PointBox box = box_of(third);
   for (int k = 0; k < 3; ++k) CHECK(inside((*third.exact)[k], box.lo[k], box.hi[k]));
   CHECK(box_of(HybridPoint(Vec3d(1, 2, 3))).lo == Vec3d(1, 2, 3));
@@ -276,8 +280,11 @@ TEST_CASE("exact orientation of rational points matches the rational determinant
   std::mt19937_64 rng(5);
   std::uniform_int_distribution<int> small(-50, 50), positive(1, 97);
   const auto random_rational = [&] { return mpq_class(small(rng), positive(rng)); };
-  const auto random_point = [&] { return ExactPoint3(random_rational(), random_rational(), random_rational()); };
-  const auto reference3 = [](const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c, const ExactPoint3& d) {
+  const auto random_point = [&] {
+    return ExactPoint3(random_rational(), random_rational(), random_rational());
+  };
+  const auto reference3 = [](const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c,
+                             const ExactPoint3& d) {
     const mpq_class ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = c.x - a.x, vy = c.y - a.y,
                     vz = c.z - a.z, wx = d.x - a.x, wy = d.y - a.y, wz = d.z - a.z;
     return sgn(mpq_class(ux * (vy * wz - vz * wy) + uy * (vz * wx - vx * wz) + uz * (vx * wy - vy * wx)));
@@ -316,9 +323,8 @@ TEST_CASE("bit_size counts the bits of the longest coordinate", "[kernel]") {
   const HybridPoint a(Vec3d(0.1, 0.2, 0.3)), b(Vec3d(0.9, 0.7, 0.4));
   const HybridPoint p(Vec3d(0.5, 0, 0)), q(Vec3d(0.45, 1, 0.1)), r(Vec3d(0.55, 0.3, 1));
   const HybridPoint first = HybridPoint::from_exact(intersect_segment_plane(a, b, p, q, r));
-  const HybridPoint second = HybridPoint::from_exact(
-      intersect_segment_plane(first, HybridPoint(Vec3d(0.2, 0.9, 0.8)), Vec3d(0, 0.4, 0), Vec3d(1, 0.5, 0.1),
-                              Vec3d(0.3, 0.45, 1)));
+  const HybridPoint second = HybridPoint::from_exact(intersect_segment_plane(
+      first, HybridPoint(Vec3d(0.2, 0.9, 0.8)), Vec3d(0, 0.4, 0), Vec3d(1, 0.5, 0.1), Vec3d(0.3, 0.45, 1)));
   REQUIRE(first.is_exact());
   REQUIRE(second.is_exact());
   CHECK(bit_size(*second.exact) > 3 * bit_size(*first.exact) / 2);

@@ -64,19 +64,19 @@ TEST_CASE("segment/triangle classifies every way a segment can meet a triangle",
   CHECK(hit.on_triangle == TrianglePart::vertex);
   CHECK(hit.index == 1);
 
-  CHECK(seg(Vec3d(5, 5, -1), Vec3d(5, 5, 1)).kind == Kind::none);  // pierces the plane outside
+  CHECK(seg(Vec3d(5, 5, -1), Vec3d(5, 5, 1)).kind == Kind::none);   // pierces the plane outside
   CHECK(seg(Vec3d(1, 1, 0.5), Vec3d(1, 1, 1)).kind == Kind::none);  // stops short
-  hit = seg(Vec3d(-1, 1, 1), Vec3d(5, 1, 1));                      // parallel, disjoint
+  hit = seg(Vec3d(-1, 1, 1), Vec3d(5, 1, 1));                       // parallel, disjoint
   CHECK(hit.kind == Kind::none);
   CHECK_FALSE(hit.in_plane);
 
   hit = seg(Vec3d(-1, 1, 0), Vec3d(5, 1, 0));  // coplanar, overlapping
   CHECK(hit.kind == Kind::coplanar);
   CHECK(hit.in_plane);
-  CHECK(seg(Vec3d(1, 1, 0), Vec3d(2, 1, 0)).kind == Kind::coplanar);   // inside the face
+  CHECK(seg(Vec3d(1, 1, 0), Vec3d(2, 1, 0)).kind == Kind::coplanar);    // inside the face
   CHECK(seg(Vec3d(-2, 6, 0), Vec3d(6, -2, 0)).kind == Kind::coplanar);  // along edge QR's line
   CHECK(seg(Vec3d(4, 0, 0), Vec3d(9, -3, 0)).kind == Kind::coplanar);   // touching vertex Q
-  hit = seg(Vec3d(3, 3, 0), Vec3d(9, 1, 0));  // coplanar, disjoint
+  hit = seg(Vec3d(3, 3, 0), Vec3d(9, 1, 0));                            // coplanar, disjoint
   CHECK(hit.kind == Kind::none);
   CHECK(hit.in_plane);
   CHECK(seg(Vec3d(1, 1, 0), Vec3d(1, 1, 0)).kind == Kind::coplanar);  // a point segment
@@ -87,20 +87,20 @@ TEST_CASE("segment/triangle classifies every way a segment can meet a triangle",
 }
 
 TEST_CASE("triangle/triangle tells shared features from real intersections", "[kernel]") {
-  CHECK(tri(Vec3d(4, 0, 0), Vec3d(0, 4, 0), Vec3d(1, 1, 5)) == TT::shared_edge);   // hinge
-  CHECK(tri(Vec3d(4, 0, 0), Vec3d(0, 4, 0), Vec3d(4, 4, 0)) == TT::shared_edge);   // flat neighbour
+  CHECK(tri(Vec3d(4, 0, 0), Vec3d(0, 4, 0), Vec3d(1, 1, 5)) == TT::shared_edge);       // hinge
+  CHECK(tri(Vec3d(4, 0, 0), Vec3d(0, 4, 0), Vec3d(4, 4, 0)) == TT::shared_edge);       // flat neighbour
   CHECK(tri(Vec3d(4, 0, 0), Vec3d(0, 4, 0), Vec3d(1, 1, 0)) == TT::coplanar_overlap);  // folded
   CHECK(tri(Vec3d(0, 0, 0), Vec3d(-3, 1, 2), Vec3d(-1, -3, 1)) == TT::shared_vertex);
-  CHECK(tri(Vec3d(0, 0, 0), Vec3d(-3, 0, 0), Vec3d(0, -3, 0)) == TT::shared_vertex);  // coplanar
+  CHECK(tri(Vec3d(0, 0, 0), Vec3d(-3, 0, 0), Vec3d(0, -3, 0)) == TT::shared_vertex);   // coplanar
   CHECK(tri(Vec3d(0, 0, 0), Vec3d(3, 1, 0), Vec3d(1, 3, 0)) == TT::coplanar_overlap);  // nested at a vertex
   CHECK(tri(Vec3d(0, 0, 0), Vec3d(1, 1, -1), Vec3d(1, 1, 1)) == TT::crossing);  // shared vertex + crossing
   CHECK(tri(Vec3d(1, 1, -1), Vec3d(1, 1, 1), Vec3d(9, 9, 0)) == TT::crossing);
-  CHECK(tri(Vec3d(1, 1, 0), Vec3d(5, 5, 1), Vec3d(5, 6, 2)) == TT::touching);  // vertex on the face
+  CHECK(tri(Vec3d(1, 1, 0), Vec3d(5, 5, 1), Vec3d(5, 6, 2)) == TT::touching);     // vertex on the face
   CHECK(tri(Vec3d(2, 0, 0), Vec3d(5, -1, 1), Vec3d(5, -1, -1)) == TT::touching);  // vertex on an edge
   CHECK(tri(Vec3d(4, 0, 0) + Vec3d(1, 0, 0), Vec3d(9, 0, 0), Vec3d(5, -3, 0)) == TT::disjoint);
   CHECK(tri(Vec3d(1, 1, 1), Vec3d(2, 1, 1), Vec3d(1, 2, 1)) == TT::disjoint);  // parallel
   CHECK(tri(Vec3d(1, 1, 0), Vec3d(6, 1, 0), Vec3d(1, 6, 0)) == TT::coplanar_overlap);
-  CHECK(tri(P, Q, R) == TT::coplanar_overlap);                                   // identical
+  CHECK(tri(P, Q, R) == TT::coplanar_overlap);  // identical
   CHECK(tri(Vec3d(4, 0, 0), Vec3d(8, 0, 0), Vec3d(6, -3, 0)) == TT::shared_vertex);
   CHECK(tri(Vec3d(2, 0, 0), Vec3d(6, 0, 0), Vec3d(4, -3, 0)) == TT::coplanar_overlap);  // edge overlap
   CHECK(tri(Vec3d(2, 2, 0), Vec3d(5, 2, 0), Vec3d(5, 0, 0)) == TT::touching);  // coplanar, vertex on edge
@@ -164,8 +164,8 @@ Shape shape_of(const std::vector<QPoint>& pts) {
   return Shape::segment;
 }
 
-std::vector<mpq_class> cut_with_plane(const std::array<QPoint, 3>& t, const QPoint& n,
-                                      const QPoint& origin, const QPoint& direction) {
+std::vector<mpq_class> cut_with_plane(const std::array<QPoint, 3>& t, const QPoint& n, const QPoint& origin,
+                                      const QPoint& direction) {
   std::vector<mpq_class> along;
   for (int i = 0; i < 3; ++i) {
     const QPoint& a = t[i];
@@ -188,8 +188,10 @@ Shape reference_shape(const std::array<QPoint, 3>& t1, const std::array<QPoint, 
   const std::vector<mpq_class> s1 = cut_with_plane(t1, n2, t2[0], d);
   const std::vector<mpq_class> s2 = cut_with_plane(t2, n1, t1[0], d);
   if (s1.empty() || s2.empty()) return Shape::empty;
-  const mpq_class lo = std::max(*std::min_element(s1.begin(), s1.end()), *std::min_element(s2.begin(), s2.end()));
-  const mpq_class hi = std::min(*std::max_element(s1.begin(), s1.end()), *std::max_element(s2.begin(), s2.end()));
+  const mpq_class lo =
+      std::max(*std::min_element(s1.begin(), s1.end()), *std::min_element(s2.begin(), s2.end()));
+  const mpq_class hi =
+      std::min(*std::max_element(s1.begin(), s1.end()), *std::max_element(s2.begin(), s2.end()));
   return lo > hi ? Shape::empty : lo == hi ? Shape::point : Shape::segment;
 }
 
@@ -204,10 +206,14 @@ TT reference_kind(const std::array<Vec3d, 3>& a, const std::array<Vec3d, 3>& b) 
                                       cross(sub(t2[1], t2[0]), sub(t2[2], t2[0])))) &&
                         dot(cross(sub(t1[1], t1[0]), sub(t1[2], t1[0])), sub(t2[0], t1[0])) == 0;
   switch (reference_shape(t1, t2)) {
-    case Shape::empty: return TT::disjoint;
-    case Shape::point: return shared > 0 ? TT::shared_vertex : TT::touching;
-    case Shape::segment: return shared == 2 ? TT::shared_edge : coplanar ? TT::coplanar_overlap : TT::crossing;
-    case Shape::area: return TT::coplanar_overlap;
+    case Shape::empty:
+      return TT::disjoint;
+    case Shape::point:
+      return shared > 0 ? TT::shared_vertex : TT::touching;
+    case Shape::segment:
+      return shared == 2 ? TT::shared_edge : coplanar ? TT::coplanar_overlap : TT::crossing;
+    case Shape::area:
+      return TT::coplanar_overlap;
   }
   return TT::disjoint;
 }
@@ -243,8 +249,8 @@ TEST_CASE("triangle/triangle agrees with rational constructions on random degene
     REQUIRE(intersect_triangles(b[2], b[0], b[1], a[1], a[0], a[2]).kind == expected);
     ++seen[expected];
   }
-  for (TT kind : {TT::disjoint, TT::shared_vertex, TT::shared_edge, TT::touching, TT::crossing,
-                  TT::coplanar_overlap}) {
+  for (TT kind :
+       {TT::disjoint, TT::shared_vertex, TT::shared_edge, TT::touching, TT::crossing, TT::coplanar_overlap}) {
     CHECK(seen[kind] > 50);
   }
 }

@@ -4,8 +4,8 @@
 #include <mr/kernel/exact_point.h>
 #include <mr/kernel/predicates.h>
 
-#include <catch2/catch.hpp>
 #include <gmpxx.h>
+#include <catch2/catch.hpp>
 
 #include <cmath>
 #include <random>
@@ -27,8 +27,8 @@ int reference_orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec
 }
 
 int reference_orient2d(const Vec2d& a, const Vec2d& b, const Vec2d& c) {
-  const mpq_class det = (q(b.x()) - q(a.x())) * (q(c.y()) - q(a.y())) -
-                        (q(b.y()) - q(a.y())) * (q(c.x()) - q(a.x()));
+  const mpq_class det =
+      (q(b.x()) - q(a.x())) * (q(c.y()) - q(a.y())) - (q(b.y()) - q(a.y())) * (q(c.x()) - q(a.x()));
   return sgn(det);
 }
 
@@ -96,8 +96,7 @@ TEST_CASE("orient3d is exact on exactly coplanar points with tiny perturbations"
     REQUIRE(orient3d(pts[0], pts[1], pts[2], pts[3]) == 0);
     const int axis = i % 3;
     pts[3][axis] = std::nextafter(pts[3][axis], i % 2 ? 1e9 : -1e9);
-    REQUIRE(orient3d(pts[0], pts[1], pts[2], pts[3]) ==
-            reference_orient3d(pts[0], pts[1], pts[2], pts[3]));
+    REQUIRE(orient3d(pts[0], pts[1], pts[2], pts[3]) == reference_orient3d(pts[0], pts[1], pts[2], pts[3]));
   }
 }
 
@@ -159,8 +158,7 @@ TEST_CASE("insphere and incircle are exact on cospherical points", "[kernel]") {
 
   // Circle x^2 + y^2 = 25 through integer points, shifted by 0.125.
   const Vec2d s(0.125, 0.125);
-  const Vec2d p0 = s + Vec2d(5, 0), p1 = s + Vec2d(0, 5), p2 = s + Vec2d(-3, -4),
-              p3 = s + Vec2d(4, -3);
+  const Vec2d p0 = s + Vec2d(5, 0), p1 = s + Vec2d(0, 5), p2 = s + Vec2d(-3, -4), p3 = s + Vec2d(4, -3);
   REQUIRE(orient2d(p0, p1, p2) == 1);
   CHECK(incircle(p0, p1, p2, p3) == 0);
   CHECK(incircle(p0, p1, p2, s) == 1);

@@ -1,6 +1,6 @@
 #include "mesh_generators.h"
-#include "test_support.h"
 #include "simplify_in_envelope.h"
+#include "test_support.h"
 
 #include <mr/check/distance.h>
 #include <mr/check/surface_check.h>
@@ -26,8 +26,8 @@ namespace {
 using mr::Index;
 using mr::TriangleSoup;
 using mr::Vec3d;
-using mr::simplify::SimplifyOptions;
 using mr::simplify::simplify_in_envelope;
+using mr::simplify::SimplifyOptions;
 
 // n x n cells of the unit square at z = 0, two triangles each; cells with
 // `skip(i, j)` left out (holes).
@@ -58,9 +58,9 @@ TriangleSoup icosphere(int levels) {
                         Vec3d(0, 1, t), Vec3d(0, -1, -t), Vec3d(0, 1, -t), Vec3d(t, 0, -1), Vec3d(t, 0, 1),
                         Vec3d(-t, 0, -1), Vec3d(-t, 0, 1)})
     s.positions.push_back(p.normalized());
-  s.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+  s.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
                  {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                 {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   mr::test::subdivide_onto_unit_sphere(s, levels);
   return s;
 }
@@ -138,7 +138,6 @@ bool has_face_at(const TriangleSoup& soup, const std::array<Vec3d, 3>& corners) 
   return false;
 }
 
-
 // Each face of `soup` as its sorted vertex triple with its orientation
 // (+1 for the first orientation seen of that triple, -1 for the reverse).
 std::map<std::array<Index, 3>, std::pair<int, int>> face_orientations(const TriangleSoup& soup) {
@@ -150,7 +149,8 @@ std::map<std::array<Index, 3>, std::pair<int, int>> face_orientations(const Tria
     const auto [it, inserted] = first.try_emplace(key, t);
     bool same = false;
     for (int r = 0; r < 3; ++r)
-      same = same || (t[0] == it->second[r] && t[1] == it->second[(r + 1) % 3] && t[2] == it->second[(r + 2) % 3]);
+      same = same ||
+             (t[0] == it->second[r] && t[1] == it->second[(r + 1) % 3] && t[2] == it->second[(r + 2) % 3]);
     (same ? counts[key].first : counts[key].second) += 1;
   }
   return counts;
@@ -248,7 +248,8 @@ TEST_CASE("thin closed parts are never turned inside out", "[simplify]") {
   // faces only a little and create no crossing, yet a sequence of them could
   // end in a closed part of negative volume (seen on a strut in meshrepair's
   // clean-up). The volume of each closed part keeps its sign.
-  for (const Vec3d& scale : {Vec3d(1, 1, 1e-4), Vec3d(1, 1, 1e-7), Vec3d(1, 1e-4, 1e-4), Vec3d(1, 3e-4, 1e-6)}) {
+  for (const Vec3d& scale :
+       {Vec3d(1, 1, 1e-4), Vec3d(1, 1, 1e-7), Vec3d(1, 1e-4, 1e-4), Vec3d(1, 3e-4, 1e-6)}) {
     for (const bool inside_out : {false, true}) {
       CAPTURE(scale.transpose(), inside_out);
       TriangleSoup input = icosphere(3);
@@ -347,7 +348,8 @@ TEST_CASE("a non-manifold soup goes through without a word from OpenMesh", "[sim
   }
   const auto offset = Index(input.positions.size());
   for (const Vec3d& q : sphere.positions) input.positions.push_back(2.0 * p - q);
-  for (const auto& t : sphere.triangles) input.triangles.push_back({t[0] + offset, t[2] + offset, t[1] + offset});
+  for (const auto& t : sphere.triangles)
+    input.triangles.push_back({t[0] + offset, t[2] + offset, t[1] + offset});
   input.triangles.push_back(first_at_apex.front());
   REQUIRE(input.positions[apex + offset] == p);
   const auto before = mr::check::check_surface(input);
@@ -380,7 +382,8 @@ TEST_CASE("a double-sided surface is simplified as one sheet and stays double-si
   const TriangleSoup sphere = icosphere(4);
   TriangleSoup input = sphere;
   input.triangles.clear();
-  for (const auto& t : sphere.triangles) input.triangles.insert(input.triangles.end(), {t, {t[0], t[2], t[1]}});
+  for (const auto& t : sphere.triangles)
+    input.triangles.insert(input.triangles.end(), {t, {t[0], t[2], t[1]}});
   const mr::test::CapturedStderr captured;
   const auto result = simplify_in_envelope(input, {});
   CHECK(captured.text().empty());
@@ -517,7 +520,9 @@ TEST_CASE("simplification rejects bad options", "[simplify]") {
 
 namespace {
 
-mr::test::ToolRun run_simplify(const std::vector<std::string>& args) { return mr::test::run_tool(mr::tools::simplify_in_envelope, args); }
+mr::test::ToolRun run_simplify(const std::vector<std::string>& args) {
+  return mr::test::run_tool(mr::tools::simplify_in_envelope, args);
+}
 
 }  // namespace
 
@@ -534,8 +539,8 @@ TEST_CASE("simplify-in-envelope runs end to end", "[simplify]") {
   CHECK(output.triangles.size() < input.triangles.size() / 2);
   std::ifstream stats_file(dir / "stats.json");
   const auto stats = nlohmann::json::parse(stats_file);
-  for (const char* key : {"faces_before", "faces_after", "duplicate_faces", "epsilon_rel", "epsilon_abs", "seconds",
-                          "distance_to_input_max", "collapses", "flips"})
+  for (const char* key : {"faces_before", "faces_after", "duplicate_faces", "epsilon_rel", "epsilon_abs",
+                          "seconds", "distance_to_input_max", "collapses", "flips"})
     CHECK(stats.contains(key));
   CHECK(stats["faces_before"] == input.triangles.size());
   CHECK(stats["faces_after"] == output.triangles.size());

@@ -116,8 +116,8 @@ TEST_CASE("tetmesh: voxel stuffing keeps exactly the lattice points farther than
   const double delta = derived.lattice_clearance;
   REQUIRE(delta == Approx(std::sqrt(3.0) / 40));
   const std::vector<Vec3d> all = lattice_points(derived.box_min, derived.box_max, derived.lattice_spacing);
-  const std::vector<Vec3d> kept = voxel_stuffing_points(derived.box_min, derived.box_max,
-                                                        derived.lattice_spacing, delta, spatial::AabbTree(cube));
+  const std::vector<Vec3d> kept = voxel_stuffing_points(
+      derived.box_min, derived.box_max, derived.lattice_spacing, delta, spatial::AabbTree(cube));
   const std::set<std::array<double, 3>> kept_set = [&] {
     std::set<std::array<double, 3>> s;
     for (const Vec3d& p : kept) s.insert({p.x(), p.y(), p.z()});
@@ -125,7 +125,8 @@ TEST_CASE("tetmesh: voxel stuffing keeps exactly the lattice points farther than
   }();
   std::size_t removed_near = 0, corners = 0;
   for (const Vec3d& p : all) {
-    const bool corner = ((p.array() == derived.box_min.array()) || (p.array() == derived.box_max.array())).all();
+    const bool corner =
+        ((p.array() == derived.box_min.array()) || (p.array() == derived.box_max.array())).all();
     corners += corner;
     const bool is_kept = kept_set.count({p.x(), p.y(), p.z()}) > 0;
     if (corner) {
@@ -172,7 +173,7 @@ TEST_CASE("tetmesh: background mesh merges equal input vertices", "[tetmesh]") {
   for (std::size_t i = 8; i < 16; ++i) {
     if (soup.positions[i].x() == 0.0) soup.positions[i].x() = -0.0;  // equals 0.0: still merged
   }
-  soup.positions.emplace_back(0.5, 0.5, 0.5);            // unreferenced, still a vertex
+  soup.positions.emplace_back(0.5, 0.5, 0.5);  // unreferenced, still a vertex
   TetrahedralizeOptions options;
   options.lattice_spacing_rel = 0.0;
   const BackgroundMesh background = background_of(soup, options);

@@ -45,7 +45,8 @@ TEST_CASE("tetmesh: filter keeps exactly the cube when the background conforms t
   const BackgroundMesh background = build_background_mesh(cube, spatial::AabbTree(cube), parameters);
   REQUIRE(background.lattice_points > 0);
 
-  const TetClassification labels = classify_tets(background.mesh, WindingNumberTree(cube), WindingRule::positive);
+  const TetClassification labels =
+      classify_tets(background.mesh, WindingNumberTree(cube), WindingRule::positive);
   const TetMesh kept = extract_tets(background.mesh, labels.keep);
   CHECK(labels.kept >= 5);
   CHECK(kept.tets.size() == labels.kept);
@@ -60,7 +61,8 @@ TEST_CASE("tetmesh: filter keeps exactly the cube when the background conforms t
 TEST_CASE("tetmesh: filter labels match the exact winding number at centroids", "[tetmesh]") {
   const TriangleSoup soup = test::cube_soup(0.1, 0.83);
   const BackgroundMesh background = default_background(soup);
-  const TetClassification labels = classify_tets(background.mesh, WindingNumberTree(soup), WindingRule::positive);
+  const TetClassification labels =
+      classify_tets(background.mesh, WindingNumberTree(soup), WindingRule::positive);
   std::size_t decided = 0, inside = 0;
   for (Index t = 0; t < background.mesh.tet_slots(); ++t) {
     const double exact = winding_number_exact(soup, tet_centroid(background.mesh, t));
@@ -80,8 +82,10 @@ TEST_CASE("tetmesh: the absolute rule keeps inverted solids, the paper's rule do
   const TriangleSoup flipped = inverted(cube);
   const BackgroundMesh background = default_background(cube);
   const auto outward = classify_tets(background.mesh, WindingNumberTree(cube), WindingRule::positive);
-  const auto inward_positive = classify_tets(background.mesh, WindingNumberTree(flipped), WindingRule::positive);
-  const auto inward_absolute = classify_tets(background.mesh, WindingNumberTree(flipped), WindingRule::absolute);
+  const auto inward_positive =
+      classify_tets(background.mesh, WindingNumberTree(flipped), WindingRule::positive);
+  const auto inward_absolute =
+      classify_tets(background.mesh, WindingNumberTree(flipped), WindingRule::absolute);
   CHECK(outward.kept > 0);
   CHECK(inward_positive.kept == 0);
   CHECK(inward_absolute.keep == outward.keep);

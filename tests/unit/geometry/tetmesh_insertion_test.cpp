@@ -37,8 +37,8 @@ std::map<std::uint32_t, double> marked_area(const Mesh& mesh) {
       const Index n = mesh.neighbour(t, k);
       if (!mesh.is_surface_face(t, k) || (n != kNoTet && n < t)) continue;
       const auto f = mesh.face_vertices(t, k);
-      const double a = triangle_area(mesh.position(f[0]).approx, mesh.position(f[1]).approx,
-                                     mesh.position(f[2]).approx);
+      const double a =
+          triangle_area(mesh.position(f[0]).approx, mesh.position(f[1]).approx, mesh.position(f[2]).approx);
       for (std::uint32_t id : mesh.surface_ids(t, k)) area[id] += a;
     }
   }
@@ -52,8 +52,10 @@ struct Inserted {
 
 Inserted insert_soup(const TriangleSoup& soup, const InsertionOptions& options = {}) {
   const DerivedParameters derived = derive_parameters({}, soup);
-  Inserted result{build_background_mesh(soup, spatial::AabbTree(soup), background_parameters(derived, 1)), {}};
-  result.stats = insert_triangles(result.background.mesh, soup, result.background.input_vertex, {}, {}, options);
+  Inserted result{build_background_mesh(soup, spatial::AabbTree(soup), background_parameters(derived, 1)),
+                  {}};
+  result.stats =
+      insert_triangles(result.background.mesh, soup, result.background.input_vertex, {}, {}, options);
   return result;
 }
 
@@ -184,7 +186,8 @@ TEST_CASE("insertion: cut points that grow too long are rounded at once, the emb
   InsertionOptions options;
   options.max_exact_bits = 1024;
   const Inserted inserted = insert_soup(soup, options);
-  INFO("rounded during insertion: " << inserted.stats.eagerly_rounded << " of " << inserted.stats.new_vertices << " rational left " << inserted.stats.rational_vertices);
+  INFO("rounded during insertion: " << inserted.stats.eagerly_rounded << " of " << inserted.stats.new_vertices
+                                    << " rational left " << inserted.stats.rational_vertices);
   CHECK(inserted.stats.eagerly_rounded > 0);
   require_exactly_embedded(soup, inserted);
 }
@@ -208,8 +211,8 @@ TriangleSoup planar_fan(const std::vector<Vec3d>& rim, const std::vector<bool>& 
 }
 
 std::vector<Vec3d> octagon() {
-  return {{0.5, 0.0, 0.5},   {0.85, 0.15, 0.5}, {1.0, 0.5, 0.5},   {0.85, 0.85, 0.5},
-          {0.5, 1.0, 0.5},   {0.15, 0.85, 0.5}, {0.0, 0.5, 0.5},   {0.15, 0.15, 0.5}};
+  return {{0.5, 0.0, 0.5}, {0.85, 0.15, 0.5}, {1.0, 0.5, 0.5}, {0.85, 0.85, 0.5},
+          {0.5, 1.0, 0.5}, {0.15, 0.85, 0.5}, {0.0, 0.5, 0.5}, {0.15, 0.15, 0.5}};
 }
 
 }  // namespace

@@ -218,7 +218,8 @@ TEST_CASE("tetmesh: the walk around an edge finds what the vertex star does", "[
   // on the box whose tets form an open fan.
   const TriangleSoup cube = test::cube_soup();
   const DerivedParameters derived = derive_parameters({}, cube);
-  const Mesh mesh = build_background_mesh(cube, spatial::AabbTree(cube), background_parameters(derived, 0)).mesh;
+  const Mesh mesh =
+      build_background_mesh(cube, spatial::AabbTree(cube), background_parameters(derived, 0)).mesh;
   std::size_t edges = 0, fans = 0;
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
     if (!mesh.tet_alive(t)) continue;
@@ -232,7 +233,8 @@ TEST_CASE("tetmesh: the walk around an edge finds what the vertex star does", "[
         REQUIRE(ring == expected);
         ++edges;
         for (Index u : ring)
-          for (int f = 0; f < 4; ++f) fans += mesh.neighbour(u, f) == kNoTet && mesh.tet(u)[f] != a && mesh.tet(u)[f] != b;
+          for (int f = 0; f < 4; ++f)
+            fans += mesh.neighbour(u, f) == kNoTet && mesh.tet(u)[f] != a && mesh.tet(u)[f] != b;
       }
   }
   CHECK(edges > 1000);

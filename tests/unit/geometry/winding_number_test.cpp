@@ -20,11 +20,14 @@ TriangleSoup uv_sphere(int rings, int segments) {
     const double theta = std::numbers::pi * i / segments;
     for (int j = 0; j < rings; ++j) {
       const double phi = 2 * std::numbers::pi * j / rings;
-      soup.positions.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+      soup.positions.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                  std::cos(theta));
     }
   }
   soup.positions.emplace_back(0, 0, -1);
-  const auto ring_vertex = [&](int i, int j) { return static_cast<Index>(1 + (i - 1) * rings + (j % rings)); };
+  const auto ring_vertex = [&](int i, int j) {
+    return static_cast<Index>(1 + (i - 1) * rings + (j % rings));
+  };
   const auto south = static_cast<Index>(soup.positions.size() - 1);
   for (int j = 0; j < rings; ++j) {
     soup.triangles.push_back({0, ring_vertex(1, j), ring_vertex(1, j + 1)});
@@ -60,7 +63,8 @@ TEST_CASE("solid angle of an octant triangle is pi/2, signed by side", "[winding
 
 TEST_CASE("winding number of a cube is 1 inside and 0 outside", "[winding]") {
   const TriangleSoup cube = test::cube_soup();
-  for (const Vec3d& q : {Vec3d(0.5, 0.5, 0.5), Vec3d(0.1, 0.2, 0.9), Vec3d(0.99, 0.01, 0.5)}) check_both(cube, q, 1.0);
+  for (const Vec3d& q : {Vec3d(0.5, 0.5, 0.5), Vec3d(0.1, 0.2, 0.9), Vec3d(0.99, 0.01, 0.5)})
+    check_both(cube, q, 1.0);
   for (const Vec3d& q : {Vec3d(2, 0.5, 0.5), Vec3d(-1, -1, -1), Vec3d(0.5, 0.5, 1.05), Vec3d(100, 0, 0)})
     check_both(cube, q, 0.0);
 }
@@ -87,7 +91,8 @@ TEST_CASE("an open cube gives fractional winding numbers inside", "[winding]") {
   // From the centre the missing face subtends a sixth of the sphere.
   check_both(cube, Vec3d(0.5, 0.5, 0.5), 5.0 / 6.0);
   const WindingNumberTree tree(cube);
-  for (const Vec3d& q : {Vec3d(0.5, 0.5, 0.95), Vec3d(0.1, 0.1, 0.1), Vec3d(0.9, 0.5, 0.99), Vec3d(0.5, 0.5, 0.6)}) {
+  for (const Vec3d& q :
+       {Vec3d(0.5, 0.5, 0.95), Vec3d(0.1, 0.1, 0.1), Vec3d(0.9, 0.5, 0.99), Vec3d(0.5, 0.5, 0.6)}) {
     INFO("query " << q.transpose());
     const double exact = winding_number_exact(cube, q);
     CHECK(exact > 0.0);
@@ -128,7 +133,8 @@ TEST_CASE("batched evaluation equals single evaluation bit for bit", "[winding]"
   const TriangleSoup sphere = uv_sphere(64, 32);
   const WindingNumberTree tree(sphere);
   std::vector<Vec3d> queries;
-  for (int i = 0; i < 5000; ++i) queries.emplace_back(std::sin(i * 0.37) * 1.3, std::cos(i * 0.11), 0.001 * i - 2.5);
+  for (int i = 0; i < 5000; ++i)
+    queries.emplace_back(std::sin(i * 0.37) * 1.3, std::cos(i * 0.11), 0.001 * i - 2.5);
   const std::vector<double> batch = tree.evaluate(queries);
   REQUIRE(batch.size() == queries.size());
   for (std::size_t i = 0; i < queries.size(); ++i) REQUIRE(batch[i] == tree.evaluate(queries[i]));
@@ -150,7 +156,7 @@ TEST_CASE("degenerate triangles add nothing and never give NaN", "[winding]") {
   soup.positions.emplace_back(0.5, 0.0, 0.0);  // on edge 0-1
   soup.positions.emplace_back(0.3, 0.3, 0.3);
   const auto mid = static_cast<Index>(soup.positions.size() - 2), inner = mid + 1;
-  soup.triangles.push_back({0, 1, mid});      // collinear
+  soup.triangles.push_back({0, 1, mid});        // collinear
   soup.triangles.push_back({inner, inner, 2});  // repeated index
   soup.triangles.push_back({inner, inner, inner});
   for (const Vec3d& q : {Vec3d(0.5, 0.5, 0.5), Vec3d(0.3, 0.3, 0.31), Vec3d(2, 2, 2)}) {
@@ -159,7 +165,8 @@ TEST_CASE("degenerate triangles add nothing and never give NaN", "[winding]") {
   }
   // Queries on a vertex, an edge, a face and on the degenerate triangles stay finite.
   const WindingNumberTree tree(soup);
-  for (const Vec3d& q : {Vec3d(0, 0, 0), Vec3d(0.5, 0, 0), Vec3d(0.5, 0.5, 0), Vec3d(0.3, 0.3, 0.3), Vec3d(1, 1, 1)}) {
+  for (const Vec3d& q :
+       {Vec3d(0, 0, 0), Vec3d(0.5, 0, 0), Vec3d(0.5, 0.5, 0), Vec3d(0.3, 0.3, 0.3), Vec3d(1, 1, 1)}) {
     CHECK(std::isfinite(winding_number_exact(soup, q)));
     CHECK(std::isfinite(tree.evaluate(q)));
   }

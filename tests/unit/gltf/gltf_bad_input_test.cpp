@@ -15,7 +15,8 @@ using mr::test::gltf::one_triangle;
 namespace {
 
 // Converts `input` to OBJ and checks the refusal; `problem` is a fragment of the expected message.
-void expect_refused(const test::TempDir& dir, const std::filesystem::path& input, const std::string& problem) {
+void expect_refused(const test::TempDir& dir, const std::filesystem::path& input,
+                    const std::string& problem) {
   const std::filesystem::path output = dir / "out.obj";
   const test::ToolRun run = test::run_format_convert({input.string(), output.string()});
   INFO(run.err);
@@ -202,7 +203,8 @@ TEST_CASE("garbage in a Draco bufferView is refused", "[gltf][bad_input]") {
   model.doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
   test::TempDir dir("gltf_bad_draco");
   test::write_bytes(dir / "bad.glb", model.glb());
-  const test::ToolRun run = test::run_format_convert({(dir / "bad.glb").string(), (dir / "out.obj").string()});
+  const test::ToolRun run =
+      test::run_format_convert({(dir / "bad.glb").string(), (dir / "out.obj").string()});
   CHECK(run.exit_code == 2);
   CHECK(run.err.find((dir / "bad.glb").string()) != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir / "out.obj"));

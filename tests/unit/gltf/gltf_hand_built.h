@@ -51,7 +51,8 @@ struct HandBuilt {
 
   int add_indices(const std::vector<std::uint32_t>& indices) {
     const int view = add_view(indices.data(), indices.size() * 4, 34963);
-    return add_accessor({{"bufferView", view}, {"componentType", 5125}, {"count", indices.size()}, {"type", "SCALAR"}});
+    return add_accessor(
+        {{"bufferView", view}, {"componentType", 5125}, {"count", indices.size()}, {"type", "SCALAR"}});
   }
 
   /// Adds a mesh with one primitive; returns the mesh index.

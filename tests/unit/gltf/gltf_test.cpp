@@ -71,7 +71,8 @@ HandBuilt tetrahedron_model() {
   }
   const int positions = model.add_floats(p, "VEC3", 3);
   const int normals = model.add_floats(n, "VEC3", 3);
-  model.add_mesh({{"POSITION", positions}, {"NORMAL", normals}}, model.add_indices({0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}));
+  model.add_mesh({{"POSITION", positions}, {"NORMAL", normals}},
+                 model.add_indices({0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}));
   return model;
 }
 
@@ -164,7 +165,8 @@ TEST_CASE("node transforms apply through the hierarchy, mirrors keep faces outwa
   // A parent with a matrix (translate y by 5) and a child rotated 90 degrees about z.
   const int child = model.add_node({{"mesh", 0}, {"rotation", {0.0, 0.0, std::sqrt(0.5), std::sqrt(0.5)}}});
   const int parent = model.add_node(
-      {{"matrix", {1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 5.0, 0.0, 1.0}}, {"children", {child}}});
+      {{"matrix", {1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 5.0, 0.0, 1.0}},
+       {"children", {child}}});
   model.set_scene({translated, mirrored, parent});
   test::TempDir dir("gltf_nodes");
   test::write_bytes(dir / "nodes.glb", model.glb());
@@ -178,27 +180,31 @@ TEST_CASE("node transforms apply through the hierarchy, mirrors keep faces outwa
   CHECK(min_x(soup, 4, 8) == Approx(-1.0));
   CHECK(soup.positions[9].isApprox(Vec3d(0, 6, 0), 1e-6));  // (1,0,0) rotated to (0,1,0), then up 5
   CHECK(soup.positions[10].isApprox(Vec3d(-1, 5, 0), 1e-6));
-  for (std::size_t instance = 0; instance < 3; ++instance) check_normals_outward(soup, 4 * instance, 4 * instance + 4);
+  for (std::size_t instance = 0; instance < 3; ++instance)
+    check_normals_outward(soup, 4 * instance, 4 * instance + 4);
 }
 
 TEST_CASE("triangle strips and fans become consistently wound triangles", "[gltf]") {
   HandBuilt model;
   // Strip up a 2x3 grid of points in z=0: 4 triangles, all facing +z.
-  const int strip_positions = model.add_floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0, 1, 2, 0}, "VEC3", 3);
+  const int strip_positions =
+      model.add_floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0, 1, 2, 0}, "VEC3", 3);
   model.add_mesh({{"POSITION", strip_positions}}, -1, 5);
   // Fan around the origin: 3 triangles, all facing +z.
   const int fan_positions = model.add_floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, -1, 1, 0}, "VEC3", 3);
   model.add_mesh({{"POSITION", fan_positions}}, model.add_indices({0, 1, 2, 3, 4}), 6);
   // A line primitive, which holds no surface and is skipped.
   model.add_mesh({{"POSITION", fan_positions}}, -1, 1);
-  model.set_scene({model.add_node({{"mesh", 0}}), model.add_node({{"mesh", 1}}), model.add_node({{"mesh", 2}})});
+  model.set_scene(
+      {model.add_node({{"mesh", 0}}), model.add_node({{"mesh", 1}}), model.add_node({{"mesh", 2}})});
   test::TempDir dir("gltf_modes");
   test::write_bytes(dir / "modes.glb", model.glb());
 
   const TriangleSoup soup = io::read_surface(gltf_registry(), dir / "modes.glb");
   REQUIRE(soup.num_triangles() == 7);
   for (const Triangle& t : soup.triangles) {
-    const Vec3d n = (soup.positions[t[1]] - soup.positions[t[0]]).cross(soup.positions[t[2]] - soup.positions[t[0]]);
+    const Vec3d n =
+        (soup.positions[t[1]] - soup.positions[t[0]]).cross(soup.positions[t[2]] - soup.positions[t[0]]);
     CHECK(n.z() > 0);
     CHECK(n.z() == Approx(n.norm()));
   }

@@ -37,7 +37,8 @@ std::string quoted(const std::filesystem::path& path) {
 }
 
 // Runs the validator on `files`; returns its exit code and fills `report`.
-int run_validator(const std::vector<std::filesystem::path>& files, const test::TempDir& dir, std::string& report) {
+int run_validator(const std::vector<std::filesystem::path>& files, const test::TempDir& dir,
+                  std::string& report) {
   std::string command = "node ";
   command += quoted(tools_dir / "validate_gltf.mjs");
   for (const auto& file : files) {
@@ -56,7 +57,8 @@ TriangleSoup cube_with_everything() {
   TriangleSoup soup = test::cube_soup();
   for (std::size_t i = 0; i < soup.positions.size(); ++i) {
     soup.normals.push_back((soup.positions[i] - Vec3d(0.5, 0.5, 0.5)).normalized().cast<float>());
-    soup.uvs.emplace_back(static_cast<float>(soup.positions[i].x()), static_cast<float>(soup.positions[i].y()));
+    soup.uvs.emplace_back(static_cast<float>(soup.positions[i].x()),
+                          static_cast<float>(soup.positions[i].y()));
     soup.colors.emplace_back(0.25f, 0.5f, 0.75f, 1.0f);
   }
   soup.normals[3] = Vec3f::Zero();  // the writer must repair it: the validator rejects non-unit normals
@@ -71,7 +73,9 @@ TEST_CASE("written glTF, GLB and Draco GLB pass the Khronos validator", "[gltf][
   const std::filesystem::path script = tools_dir / "validate_gltf.mjs";
   REQUIRE(std::filesystem::exists(script));
   if (std::system("node --version > /dev/null 2>&1") != 0)
-    FAIL("node is not on PATH: install Node.js (apt-get install nodejs npm), then npm ci --prefix tests/tools");
+    FAIL(
+        "node is not on PATH: install Node.js (apt-get install nodejs npm), then npm ci --prefix "
+        "tests/tools");
   if (!std::filesystem::exists(tools_dir / "node_modules" / "gltf-validator"))
     FAIL("the glTF validator is missing: run  npm ci --prefix " + tools_dir.string());
 

@@ -4,8 +4,8 @@
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
 
-#include <catch2/catch.hpp>
 #include <tbb/global_control.h>
+#include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <fstream>

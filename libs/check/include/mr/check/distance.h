@@ -6,7 +6,7 @@
 namespace mr::check {
 
 struct DistanceReport {
-  double max = 0;   ///< largest sample distance found
+  double max = 0;  ///< largest sample distance found
   double mean = 0;
   Vec3d farthest = Vec3d::Zero();  ///< the sample at distance max: where to look
   std::size_t samples = 0;

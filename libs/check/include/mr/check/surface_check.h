@@ -11,17 +11,17 @@
 namespace mr::check {
 
 struct SurfaceReport {
-  std::size_t vertices = 0;   ///< after welding bit-identical positions
+  std::size_t vertices = 0;  ///< after welding bit-identical positions
   std::size_t faces = 0;
-  std::size_t boundary_edges = 0;       ///< edges with one face
-  std::size_t nonmanifold_edges = 0;    ///< edges with more than two faces
-  std::size_t nonmanifold_vertices = 0; ///< vertices whose faces form more than one fan
-  std::size_t inconsistent_edges = 0;   ///< two-face edges traversed the same way by both
-  std::size_t degenerate_faces = 0;     ///< exactly collinear corners or repeated vertex
-  std::size_t duplicate_faces = 0;      ///< same vertex set as an earlier face
-  std::size_t components = 0;           ///< connected through shared vertices
+  std::size_t boundary_edges = 0;             ///< edges with one face
+  std::size_t nonmanifold_edges = 0;          ///< edges with more than two faces
+  std::size_t nonmanifold_vertices = 0;       ///< vertices whose faces form more than one fan
+  std::size_t inconsistent_edges = 0;         ///< two-face edges traversed the same way by both
+  std::size_t degenerate_faces = 0;           ///< exactly collinear corners or repeated vertex
+  std::size_t duplicate_faces = 0;            ///< same vertex set as an earlier face
+  std::size_t components = 0;                 ///< connected through shared vertices
   std::int64_t self_intersecting_pairs = -1;  ///< exact; -1 when not computed
-  double volume = 0;                    ///< signed enclosed volume (meaningful when closed)
+  double volume = 0;                          ///< signed enclosed volume (meaningful when closed)
 
   bool closed() const { return boundary_edges == 0; }
   bool manifold() const { return nonmanifold_edges == 0 && nonmanifold_vertices == 0; }

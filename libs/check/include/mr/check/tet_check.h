@@ -17,7 +17,7 @@ struct TetReport {
   double avg_min_dihedral_deg = 0;  ///< mean over tets of their smallest dihedral angle
   double max_amips = 0;             ///< conformal AMIPS energy; 3 for a regular tet
   double avg_amips = 0;
-  SurfaceReport boundary;           ///< of all tets
+  SurfaceReport boundary;  ///< of all tets
 
   bool valid() const { return inverted_tets == 0 && degenerate_tets == 0 && tets > 0; }
 };

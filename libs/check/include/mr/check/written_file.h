@@ -19,7 +19,8 @@ struct WrittenFileReport {
 /// A check for io::write_surface: reads the written file back and throws
 /// mr::RunError naming `destination` and what fails unless it is
 /// watertight; fills `report` (if not null) either way.
-io::WrittenFileCheck watertight_file_check(const io::Registry& registry, const std::filesystem::path& destination,
+io::WrittenFileCheck watertight_file_check(const io::Registry& registry,
+                                           const std::filesystem::path& destination,
                                            WrittenFileReport* report = nullptr);
 
 }  // namespace mr::check

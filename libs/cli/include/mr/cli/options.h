@@ -20,10 +20,10 @@ struct Option {
 };
 
 struct ToolSpec {
-  std::string name;                     ///< "format-convert"
-  std::string summary;                  ///< one line
-  std::vector<std::string> positionals; ///< names of the required positional arguments
-  std::string description;              ///< paragraphs printed after usage
+  std::string name;                      ///< "format-convert"
+  std::string summary;                   ///< one line
+  std::vector<std::string> positionals;  ///< names of the required positional arguments
+  std::string description;               ///< paragraphs printed after usage
   std::vector<Option> options;
 };
 

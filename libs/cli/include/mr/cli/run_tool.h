@@ -15,8 +15,8 @@ namespace mr::cli {
 enum ExitCode : int { exit_ok = 0, exit_failure = 1, exit_bad_input = 2 };
 
 /// Parses `args` with `spec` and calls `body(positionals)`. `args` excludes the program name.
-int run_tool(const ToolSpec& spec, const std::vector<std::string>& args, std::ostream& out,
-             std::ostream& err, const std::function<void(const std::vector<std::string>&)>& body);
+int run_tool(const ToolSpec& spec, const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+             const std::function<void(const std::vector<std::string>&)>& body);
 
 /// Runs `body` on at most `threads` worker threads (0: all), for tools whose
 /// library calls have no thread option of their own.

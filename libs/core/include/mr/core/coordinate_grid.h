@@ -66,7 +66,7 @@ class CoordinateGrid {
 
   Kind kind_;
   Quantization quantization_;
-  float delta_ = 0.0f;        ///< quantized: the step, in float as Draco computes it
+  float delta_ = 0.0f;  ///< quantized: the step, in float as Draco computes it
   std::int64_t max_level_ = 0;
 };
 

@@ -28,7 +28,8 @@ struct ToTriMeshResult {
 /// Whether mesh.add_face(a, b, c) would accept the face: the same tests,
 /// without changing the mesh or writing to OpenMesh's error stream. False for
 /// a repeated vertex.
-bool can_add_face(const TriMesh& mesh, TriMesh::VertexHandle a, TriMesh::VertexHandle b, TriMesh::VertexHandle c);
+bool can_add_face(const TriMesh& mesh, TriMesh::VertexHandle a, TriMesh::VertexHandle b,
+                  TriMesh::VertexHandle c);
 
 /// Adds every vertex of the soup (isolated ones too, same indices) and every
 /// triangle OpenMesh accepts, in order. Never calls add_face with a face it

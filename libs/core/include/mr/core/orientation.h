@@ -13,8 +13,8 @@
 namespace mr {
 
 struct OrientationStats {
-  std::size_t patches = 0;  ///< sets of faces connected through manifold edges
-  std::size_t flipped = 0;  ///< faces whose orientation was reversed
+  std::size_t patches = 0;    ///< sets of faces connected through manifold edges
+  std::size_t flipped = 0;    ///< faces whose orientation was reversed
   std::size_t conflicts = 0;  ///< manifold edges left inconsistent (non-orientable patch)
 };
 

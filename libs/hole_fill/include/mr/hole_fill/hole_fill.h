@@ -47,14 +47,14 @@ const char* to_string(HoleOutcome outcome);
 
 struct HoleReport {
   std::size_t border_edges = 0;
-  std::size_t islands = 0;        ///< loops of other parts joined into this hole
+  std::size_t islands = 0;  ///< loops of other parts joined into this hole
   double diameter = 0.0;
   HoleOutcome outcome = HoleOutcome::failed;
-  std::string method;             ///< the method whose patch was accepted
-  std::string why;                ///< failed: why the last patch tried was refused
-  std::size_t attempts = 0;       ///< patches tried
+  std::string method;        ///< the method whose patch was accepted
+  std::string why;           ///< failed: why the last patch tried was refused
+  std::size_t attempts = 0;  ///< patches tried
   std::size_t patch_faces = 0;
-  std::size_t patch_vertices = 0; ///< new vertices inside the patch
+  std::size_t patch_vertices = 0;  ///< new vertices inside the patch
   double seconds = 0.0;
 };
 

@@ -30,9 +30,8 @@ bool is_volume_format(const Registry& registry, const std::filesystem::path& pat
 /// reason, when it breaks a promise; the output is then not renamed into place.
 using WrittenFileCheck = std::function<void(const std::filesystem::path& written)>;
 
-void write_surface(const Registry& registry, const TriangleSoup& soup,
-                   const std::filesystem::path& path, const WriteOptions& options = {},
-                   const WrittenFileCheck& check = {});
+void write_surface(const Registry& registry, const TriangleSoup& soup, const std::filesystem::path& path,
+                   const WriteOptions& options = {}, const WrittenFileCheck& check = {});
 
 /// The grid on which the format chosen for `path` (or options.format) stores
 /// the positions of a surface inside [lo, hi]. Throws like write_surface
@@ -40,7 +39,7 @@ void write_surface(const Registry& registry, const TriangleSoup& soup,
 CoordinateGrid surface_position_grid(const Registry& registry, const std::filesystem::path& path,
                                      const WriteOptions& options, const Vec3d& lo, const Vec3d& hi);
 
-void write_volume(const Registry& registry, const TetMesh& mesh,
-                  const std::filesystem::path& path, const WriteOptions& options = {});
+void write_volume(const Registry& registry, const TetMesh& mesh, const std::filesystem::path& path,
+                  const WriteOptions& options = {});
 
 }  // namespace mr::io

@@ -29,11 +29,9 @@ struct Format {
   std::string description;
 
   std::function<TriangleSoup(const std::filesystem::path&, const ReadOptions&)> read_surface;
-  std::function<void(const TriangleSoup&, const std::filesystem::path&, const WriteOptions&)>
-      write_surface;
+  std::function<void(const TriangleSoup&, const std::filesystem::path&, const WriteOptions&)> write_surface;
   std::function<TetMesh(const std::filesystem::path&, const ReadOptions&)> read_volume;
-  std::function<void(const TetMesh&, const std::filesystem::path&, const WriteOptions&)>
-      write_volume;
+  std::function<void(const TetMesh&, const std::filesystem::path&, const WriteOptions&)> write_volume;
 
   /// The grid this format stores surface positions on when written with
   /// `options`, for positions inside [lo, hi]. Empty: every double is stored
@@ -55,10 +53,8 @@ class Registry {
   const Format* by_extension(const std::filesystem::path& path) const;
   /// by_name(explicit_name) if it is not empty, else by_extension(path);
   /// throws InputError (for reading) or UsageError (for writing) when none fits.
-  const Format& resolve_for_read(const std::filesystem::path& path,
-                                 const std::string& explicit_name) const;
-  const Format& resolve_for_write(const std::filesystem::path& path,
-                                  const std::string& explicit_name) const;
+  const Format& resolve_for_read(const std::filesystem::path& path, const std::string& explicit_name) const;
+  const Format& resolve_for_write(const std::filesystem::path& path, const std::string& explicit_name) const;
 
   const std::vector<Format>& formats() const { return formats_; }
 

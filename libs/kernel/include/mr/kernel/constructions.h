@@ -15,17 +15,14 @@ namespace mr {
 /// Precondition (mr::UsageError otherwise): the segment meets the plane in
 /// exactly one point, i.e. plane_edge_sides(p, q, r, a, b) meets() and is
 /// not in_plane().
-ExactPoint3 intersect_segment_plane(const HybridPoint& a, const HybridPoint& b,
-                                    const HybridPoint& p, const HybridPoint& q,
-                                    const HybridPoint& r);
+ExactPoint3 intersect_segment_plane(const HybridPoint& a, const HybridPoint& b, const HybridPoint& p,
+                                    const HybridPoint& q, const HybridPoint& r);
 
 /// The common point of segment [a, b] and triangle (p, q, r) when they meet in
 /// exactly one point with the segment outside the plane (SegmentTriangleKind::point);
 /// std::nullopt when they are disjoint or the segment lies in the plane.
-std::optional<ExactPoint3> intersect_segment_triangle_point(const HybridPoint& a,
-                                                            const HybridPoint& b,
-                                                            const HybridPoint& p,
-                                                            const HybridPoint& q,
+std::optional<ExactPoint3> intersect_segment_triangle_point(const HybridPoint& a, const HybridPoint& b,
+                                                            const HybridPoint& p, const HybridPoint& q,
                                                             const HybridPoint& r);
 
 }  // namespace mr

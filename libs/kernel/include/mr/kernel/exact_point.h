@@ -42,10 +42,9 @@ bool is_representable(const ExactPoint3& p);
 std::size_t bit_size(const ExactPoint3& p);
 
 /// Exact evaluations, same conventions as predicates.h.
-int orient3d(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c,
-             const ExactPoint3& d);
+int orient3d(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c, const ExactPoint3& d);
 int orient2d_projected(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c, int axis);
-int insphere(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c,
-             const ExactPoint3& d, const ExactPoint3& e);
+int insphere(const ExactPoint3& a, const ExactPoint3& b, const ExactPoint3& c, const ExactPoint3& d,
+             const ExactPoint3& e);
 
 }  // namespace mr

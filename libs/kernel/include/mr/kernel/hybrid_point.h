@@ -39,9 +39,7 @@ struct HybridPoint {
 /// all points are doubles this is the filtered double predicate; otherwise an
 /// interval filter on the rationals runs first and GMP decides only the
 /// ambiguous cases.
-int orient3d(const HybridPoint& a, const HybridPoint& b, const HybridPoint& c,
-             const HybridPoint& d);
-int orient2d_projected(const HybridPoint& a, const HybridPoint& b, const HybridPoint& c,
-                       int axis);
+int orient3d(const HybridPoint& a, const HybridPoint& b, const HybridPoint& c, const HybridPoint& d);
+int orient2d_projected(const HybridPoint& a, const HybridPoint& b, const HybridPoint& c, int axis);
 
 }  // namespace mr

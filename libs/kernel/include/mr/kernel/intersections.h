@@ -61,8 +61,8 @@ struct SegmentTriangleHit {
   }
 };
 
-SegmentTriangleHit intersect_segment_triangle(const Vec3d& a, const Vec3d& b, const Vec3d& p,
-                                              const Vec3d& q, const Vec3d& r);
+SegmentTriangleHit intersect_segment_triangle(const Vec3d& a, const Vec3d& b, const Vec3d& p, const Vec3d& q,
+                                              const Vec3d& r);
 SegmentTriangleHit intersect_segment_triangle(const HybridPoint& a, const HybridPoint& b,
                                               const HybridPoint& p, const HybridPoint& q,
                                               const HybridPoint& r);
@@ -91,10 +91,9 @@ struct TriangleTriangleHit {
   }
 };
 
-TriangleTriangleHit intersect_triangles(const Vec3d& p1, const Vec3d& q1, const Vec3d& r1,
-                                        const Vec3d& p2, const Vec3d& q2, const Vec3d& r2);
-TriangleTriangleHit intersect_triangles(const HybridPoint& p1, const HybridPoint& q1,
-                                        const HybridPoint& r1, const HybridPoint& p2,
-                                        const HybridPoint& q2, const HybridPoint& r2);
+TriangleTriangleHit intersect_triangles(const Vec3d& p1, const Vec3d& q1, const Vec3d& r1, const Vec3d& p2,
+                                        const Vec3d& q2, const Vec3d& r2);
+TriangleTriangleHit intersect_triangles(const HybridPoint& p1, const HybridPoint& q1, const HybridPoint& r1,
+                                        const HybridPoint& p2, const HybridPoint& q2, const HybridPoint& r2);
 
 }  // namespace mr

@@ -35,7 +35,6 @@ bool try_round(HybridPoint& point, std::span<const OppositeFace> faces);
 /// positions[vertex] against the tets in `incident_tets` (each must contain
 /// `vertex`; otherwise mr::UsageError, raised only when a rational vertex is
 /// actually rounded: plain double vertices return true at once).
-bool try_round_vertex(std::span<HybridPoint> positions, Index vertex,
-                      std::span<const Tet> incident_tets);
+bool try_round_vertex(std::span<HybridPoint> positions, Index vertex, std::span<const Tet> incident_tets);
 
 }  // namespace mr

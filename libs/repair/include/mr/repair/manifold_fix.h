@@ -78,6 +78,7 @@ struct ManifoldFixStats {
 /// embedding. `envelope` (may be null) guides the choice of removals and
 /// additions. Throws mr::UsageError when `inside` has the wrong size.
 ManifoldFixStats make_boundary_manifold(TetMesh& mesh, std::span<const std::uint8_t> inside,
-                                        const envelope::Envelope* envelope, const ManifoldFixOptions& options);
+                                        const envelope::Envelope* envelope,
+                                        const ManifoldFixOptions& options);
 
 }  // namespace mr::repair

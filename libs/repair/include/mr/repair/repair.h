@@ -40,7 +40,8 @@ struct RepairOptions {
   /// When no place on the output grid is left for some vertex, a finer grid
   /// for the same box to round onto instead (more Draco bits), or nothing
   /// (the repair then fails). Empty: nothing.
-  std::function<std::optional<CoordinateGrid>(const Vec3d& lo, const Vec3d& hi, const CoordinateGrid& refused)>
+  std::function<std::optional<CoordinateGrid>(const Vec3d& lo, const Vec3d& hi,
+                                              const CoordinateGrid& refused)>
       finer_output_grid;
   GridRoundingOptions rounding;
 };
@@ -55,13 +56,13 @@ struct RepairResult {
   /// at the same position.
   TriangleSoup surface;
   ManifoldFixStats manifold;
-  std::size_t peeled_faces = 0;   ///< faces of the boundary before the clean-up
+  std::size_t peeled_faces = 0;  ///< faces of the boundary before the clean-up
   std::size_t collapses = 0;
   std::size_t flips = 0;
   /// The grid the surface's positions lie on (the writer must use it).
   CoordinateGrid grid = CoordinateGrid::doubles();
   GridRoundingStats rounding;
-  int finer_grids = 0;  ///< grids refused before `grid` (finer_output_grid)
+  int finer_grids = 0;            ///< grids refused before `grid` (finer_output_grid)
   std::vector<StageTime> stages;  ///< "manifold", "peel", "cleanup", "round", in order
 };
 

@@ -37,7 +37,7 @@ struct GridRoundingStats {
   std::size_t nearest_refused = 0;  ///< vertices placed on a grid point other than the nearest
   std::size_t collapsed = 0;        ///< vertices no grid point worked for, collapsed onto a neighbour
   int passes = 0;
-  double max_move = 0.0;            ///< largest distance a vertex moved
+  double max_move = 0.0;  ///< largest distance a vertex moved
 };
 
 /// Moves every vertex of `surface` onto `grid`. Precondition: the surface is
@@ -60,9 +60,9 @@ GridRoundingStats round_to_grid(TriangleSoup& surface, const CoordinateGrid& gri
 using FinerGrid = std::function<std::optional<CoordinateGrid>(const CoordinateGrid& refused)>;
 
 struct GridRounding {
-  CoordinateGrid grid;          ///< the grid the surface now lies on
+  CoordinateGrid grid;  ///< the grid the surface now lies on
   GridRoundingStats stats;
-  int finer_grids = 0;          ///< grids refused before `grid`
+  int finer_grids = 0;  ///< grids refused before `grid`
 };
 
 /// round_to_grid onto `grid`, and while it throws, onto the grid `finer`

@@ -6,9 +6,9 @@
 // envelope of the ORIGINAL input, turns no face normal by more than a bound,
 // keeps the mesh a valid halfedge mesh (link condition), keeps every vertex
 // it removed within epsilon of the faces that are left (so parts thinner than
-// epsilon do not erode) and creates no new self-intersection (exact test). Non-manifold parts are kept aside untouched;
-// copies of one triangle (double-sided faces) are simplified as one face and
-// written out as often, in the same orientations, as the input had them.
+// epsilon do not erode) and creates no new self-intersection (exact test). Non-manifold parts are kept aside
+// untouched; copies of one triangle (double-sided faces) are simplified as one face and written out as often,
+// in the same orientations, as the input had them.
 //
 // Orientation: each patch (faces connected through manifold edges) is first
 // oriented coherently, keeping the orientation of the larger part of its area
@@ -55,8 +55,8 @@ struct SimplifyResult {
   std::size_t locked_vertices = 0;   ///< vertices never moved (non-manifold neighbourhood)
   std::size_t collapses = 0;
   std::size_t flips = 0;
-  double epsilon = 0.0;              ///< absolute radius used
-  double seconds_setup = 0.0;        ///< weld, halfedge mesh, envelope and grid construction
+  double epsilon = 0.0;        ///< absolute radius used
+  double seconds_setup = 0.0;  ///< weld, halfedge mesh, envelope and grid construction
   double seconds_collapse = 0.0;
   double seconds_flip = 0.0;
 };

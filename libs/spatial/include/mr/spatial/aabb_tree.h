@@ -91,8 +91,8 @@ class AabbTree {
   template <class Visitor>
   void traverse(const Vec3d& p, double& bound_sq, Visitor&& visit) const;
 
-  std::vector<Node> nodes_;           // depth-first order, root first
-  std::vector<Vec3d> corners_;        // 3 per triangle slot, in leaf order
+  std::vector<Node> nodes_;                  // depth-first order, root first
+  std::vector<Vec3d> corners_;               // 3 per triangle slot, in leaf order
   std::vector<std::uint32_t> triangle_ids_;  // soup index of each slot
 
   friend class AabbBuilder;

@@ -54,9 +54,9 @@ class BoxGrid {
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
   std::vector<std::uint32_t> oversize_;
   std::vector<std::uint8_t> in_oversize_;
-  std::vector<Box> boxes_;        ///< per face, its current box
-  std::int64_t entries_ = 0;      ///< in cells_, stale ones included
-  std::int64_t live_entries_ = 0; ///< of the current boxes
+  std::vector<Box> boxes_;         ///< per face, its current box
+  std::int64_t entries_ = 0;       ///< in cells_, stale ones included
+  std::int64_t live_entries_ = 0;  ///< of the current boxes
 };
 
 }  // namespace mr::spatial

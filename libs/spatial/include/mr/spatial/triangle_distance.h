@@ -18,8 +18,7 @@ PointOnPrimitive closest_on_segment(const Vec3d& p, const Vec3d& a, const Vec3d&
 /// longest edge (its normal cannot be trusted) the answer is the closest point
 /// of its three edges, which overestimates the distance by at most its width.
 /// The returned point always lies on the triangle up to rounding.
-PointOnPrimitive closest_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b,
-                                     const Vec3d& c);
+PointOnPrimitive closest_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c);
 
 /// Squared distance from p to triangle (a, b, c), the same as
 /// closest_on_triangle's up to rounding but faster: the region of p

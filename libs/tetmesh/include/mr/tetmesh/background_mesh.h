@@ -16,9 +16,9 @@ namespace mr::tetmesh {
 struct BackgroundParameters {
   Vec3d box_min = Vec3d::Zero();  ///< the background box; must contain every input vertex strictly
   Vec3d box_max = Vec3d::Zero();
-  double lattice_spacing = 0.0;   ///< 0: no lattice
-  double lattice_clearance = 0.0; ///< lattice points within this distance of the input are dropped
-  int threads = 0;                ///< 0: all hardware threads
+  double lattice_spacing = 0.0;    ///< 0: no lattice
+  double lattice_clearance = 0.0;  ///< lattice points within this distance of the input are dropped
+  int threads = 0;                 ///< 0: all hardware threads
   /// CGAL's parallel insertion (TBB, lock grid). Output is the same either
   /// way: the Delaunay tets of points in degenerate position are fixed by
   /// CGAL's symbolic perturbation, and the tets are sorted afterwards.

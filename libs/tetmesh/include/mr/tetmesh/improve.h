@@ -64,15 +64,16 @@ struct ImproveStats {
 
 struct RoundingStats {
   std::size_t rational_before = 0;
-  std::size_t rounded = 0;       ///< rounded in place (try_round)
-  std::size_t moved = 0;         ///< moved to a nearby double position
-  std::size_t collapsed = 0;     ///< collapsed onto a neighbour with double coordinates
-  std::size_t remaining = 0;     ///< still rational
+  std::size_t rounded = 0;    ///< rounded in place (try_round)
+  std::size_t moved = 0;      ///< moved to a nearby double position
+  std::size_t collapsed = 0;  ///< collapsed onto a neighbour with double coordinates
+  std::size_t remaining = 0;  ///< still rational
 };
 
 /// What the tracked surface must stay near (the envelopes are not owned).
 struct SurfaceBounds {
-  SurfaceBounds(const envelope::Envelope& surface_, const envelope::Envelope* open_boundary_ = nullptr)  // NOLINT
+  SurfaceBounds(const envelope::Envelope& surface_,
+                const envelope::Envelope* open_boundary_ = nullptr)  // NOLINT
       : surface(surface_), open_boundary(open_boundary_) {}
   /// Every tracked face stays inside.
   const envelope::Envelope& surface;
@@ -86,15 +87,14 @@ struct SurfaceBounds {
 /// Improves `mesh` in place. Precondition: find_mesh_inconsistency(mesh) == ""
 /// and every tracked face inside `bounds.surface`. Throws mr::UsageError on a
 /// non-positive target edge length or stop energy.
-ImproveStats improve_mesh(Mesh& mesh, const SurfaceBounds& bounds,
-                          const ImproveOptions& options, const Logger& logger = {});
+ImproveStats improve_mesh(Mesh& mesh, const SurfaceBounds& bounds, const ImproveOptions& options,
+                          const Logger& logger = {});
 
 /// Rounds every rational vertex to doubles where no incident tet inverts; a
 /// vertex that cannot be rounded in place is moved to a nearby double
 /// position or collapsed onto a neighbour (same checks as improve_mesh),
 /// then retried. `remaining` says how many are left rational.
-RoundingStats round_vertices(Mesh& mesh, const SurfaceBounds& bounds,
-                             const Logger& logger = {});
+RoundingStats round_vertices(Mesh& mesh, const SurfaceBounds& bounds, const Logger& logger = {});
 
 /// Quality of the live tets (parallel, deterministic).
 QualitySummary measure_quality(const Mesh& mesh);

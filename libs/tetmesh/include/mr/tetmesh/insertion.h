@@ -16,19 +16,19 @@
 namespace mr::tetmesh {
 
 struct InsertionStats {
-  std::size_t inserted = 0;         ///< triangles and polygons cut into the mesh
-  std::size_t polygons = 0;         ///< of those, convex polygons of several coplanar triangles
-  std::size_t merged = 0;           ///< triangles embedded as part of an earlier one's polygon
-  std::size_t degenerate = 0;       ///< skipped: collinear corners, nothing to embed
-  std::size_t copies = 0;           ///< repeats of an earlier triangle's corners: marked, not cut again
+  std::size_t inserted = 0;    ///< triangles and polygons cut into the mesh
+  std::size_t polygons = 0;    ///< of those, convex polygons of several coplanar triangles
+  std::size_t merged = 0;      ///< triangles embedded as part of an earlier one's polygon
+  std::size_t degenerate = 0;  ///< skipped: collinear corners, nothing to embed
+  std::size_t copies = 0;      ///< repeats of an earlier triangle's corners: marked, not cut again
   std::size_t cut_tets = 0;
   std::size_t rebuilt_tets = 0;
   std::size_t new_tets = 0;
   std::size_t new_vertices = 0;
   std::size_t steiner_points = 0;
-  std::size_t eagerly_rounded = 0;   ///< cut points too long to keep exact, rounded at once
-  std::size_t skipped = 0;           ///< left out on request (see `skip`)
-  std::size_t rational_vertices = 0; ///< still rational when insertion ended
+  std::size_t eagerly_rounded = 0;    ///< cut points too long to keep exact, rounded at once
+  std::size_t skipped = 0;            ///< left out on request (see `skip`)
+  std::size_t rational_vertices = 0;  ///< still rational when insertion ended
   /// Per vertex slot, the id of the triangle whose insertion created the
   /// vertex; kNoCreator for the vertices of the background mesh.
   std::vector<std::uint32_t> vertex_creator;
@@ -56,8 +56,8 @@ struct InsertionOptions {
 /// Triangles with skip[i] != 0 are left out (`skip` empty: none). Cut
 /// points are left rational: rounding_stage rounds them afterwards.
 /// Throws mr::RunError if an internal consistency check fails.
-InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input,
-                                std::span<const Index> input_vertex, std::span<const char> skip = {},
-                                const Logger& logger = {}, const InsertionOptions& options = {});
+InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input, std::span<const Index> input_vertex,
+                                std::span<const char> skip = {}, const Logger& logger = {},
+                                const InsertionOptions& options = {});
 
 }  // namespace mr::tetmesh

@@ -53,16 +53,16 @@ struct TetrahedralizeOptions {
 struct DerivedParameters {
   Vec3d input_min = Vec3d::Zero();  ///< bounding box of the input vertices
   Vec3d input_max = Vec3d::Zero();
-  double diagonal = 0.0;            ///< b
+  double diagonal = 0.0;  ///< b
   double epsilon = 0.0;
-  double edge_length = 0.0;         ///< ell
-  double lattice_spacing = 0.0;     ///< 0: no lattice
-  double lattice_clearance = 0.0;   ///< delta
-  double snap_spacing = 0.0;        ///< a power of two; 0: no snapping
+  double edge_length = 0.0;        ///< ell
+  double lattice_spacing = 0.0;    ///< 0: no lattice
+  double lattice_clearance = 0.0;  ///< delta
+  double snap_spacing = 0.0;       ///< a power of two; 0: no snapping
   /// Margin between the input's box and the background box: max(ell, 2 epsilon),
   /// as fTetWild (see derive_parameters).
   double box_margin = 0.0;
-  Vec3d box_min = Vec3d::Zero();    ///< background box
+  Vec3d box_min = Vec3d::Zero();  ///< background box
   Vec3d box_max = Vec3d::Zero();
 };
 

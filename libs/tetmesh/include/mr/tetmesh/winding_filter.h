@@ -43,9 +43,9 @@ std::vector<double> tracked_surface_offsets(const Mesh& mesh, const TriangleSoup
 
 /// Classifies every live tet by the winding number of the tracked surface
 /// (whose tree is `tracked`) at its centroid, for when it is not a cycle
-/// (an open input, or triangles left out), asked of the input triangles it embeds (left_out[i] == 0) wherever the two
-/// cannot differ much: the tracked chain is those triangles cut into faces,
-/// each moved off its triangle by at most that triangle's offset
+/// (an open input, or triangles left out), asked of the input triangles it embeds (left_out[i] == 0) wherever
+/// the two cannot differ much: the tracked chain is those triangles cut into faces, each moved off its
+/// triangle by at most that triangle's offset
 /// (`offsets`, from tracked_surface_offsets), so at a centroid farther than kOffsetMargin
 /// times the offset from every triangle both numbers agree to a small
 /// fraction. The input has far fewer and better shaped triangles than the
@@ -98,8 +98,9 @@ struct BarrierRefinementStats {
 /// of that tet that can be split (positive tets, tracked halves inside the
 /// envelope) is split at its midpoint and the tets are classified again.
 /// Sequential, in slot order: deterministic.
-TetClassification classify_with_refined_barrier(Mesh& mesh, const TriangleSoup& holes, const WindingNumberTree& tree,
-                                                WindingRule rule, const envelope::Envelope& envelope,
+TetClassification classify_with_refined_barrier(Mesh& mesh, const TriangleSoup& holes,
+                                                const WindingNumberTree& tree, WindingRule rule,
+                                                const envelope::Envelope& envelope,
                                                 const BarrierRefinementOptions& options,
                                                 BarrierRefinementStats& stats);
 

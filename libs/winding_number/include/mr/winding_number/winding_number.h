@@ -56,13 +56,13 @@ class WindingNumberTree {
   /// Taylor coefficients of one cluster of triangles about its centre.
   struct Node {
     Vec3d center = Vec3d::Zero();
-    double radius = 0.0;                               ///< bounds every corner's distance to center
+    double radius = 0.0;  ///< bounds every corner's distance to center
     double area = 0.0;
-    Vec3d normal_sum = Vec3d::Zero();                  ///< order 0: sum of area * normal
-    Eigen::Matrix3d first = Eigen::Matrix3d::Zero();   ///< order 1: sum of int (x-c)_i n_j
-    std::array<double, 18> second{};                   ///< order 2: int (x-c)_i (x-c)_k n_j, (ik) symmetric
-    std::uint32_t begin = 0, end = 0;                  ///< triangle range
-    std::uint32_t right = 0;                           ///< right child; left child is this + 1; 0 = leaf
+    Vec3d normal_sum = Vec3d::Zero();                 ///< order 0: sum of area * normal
+    Eigen::Matrix3d first = Eigen::Matrix3d::Zero();  ///< order 1: sum of int (x-c)_i n_j
+    std::array<double, 18> second{};                  ///< order 2: int (x-c)_i (x-c)_k n_j, (ik) symmetric
+    std::uint32_t begin = 0, end = 0;                 ///< triangle range
+    std::uint32_t right = 0;                          ///< right child; left child is this + 1; 0 = leaf
   };
 
  private:

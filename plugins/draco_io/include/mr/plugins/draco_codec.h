@@ -35,6 +35,7 @@ struct DracoEncoded {
 DracoEncoded encode_draco(const TriangleSoup& soup, const io::DracoOptions& options);
 
 /// Throws mr::InputError naming `source` on anything that is not a valid Draco triangle mesh.
-TriangleSoup decode_draco(std::string_view bytes, const std::string& source, const DracoAttributeIds& ids = {});
+TriangleSoup decode_draco(std::string_view bytes, const std::string& source,
+                          const DracoAttributeIds& ids = {});
 
 }  // namespace mr::plugins
