@@ -1,9 +1,11 @@
 #include "simplify_in_envelope.h"
 
 #include <mr/cli/run_tool.h>
+#include <mr/io/unfinished_files.h>
 
 #include <iostream>
 
 int main(int argc, char** argv) {
+  mr::io::remove_unfinished_files_on_signals();
   return mr::tools::simplify_in_envelope(mr::cli::arguments(argc, argv), std::cout, std::cerr);
 }

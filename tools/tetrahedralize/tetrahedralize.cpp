@@ -1,4 +1,5 @@
 #include "tetrahedralize.h"
+#include "memory_budget.h"
 
 #include <mr/check/distance.h>
 #include <mr/check/tet_check.h>
@@ -22,6 +23,7 @@ struct ToolOptions {
   io::WriteOptions write;
   std::string stats_path;
   std::string surface_path;
+  std::size_t max_memory = cli::default_max_memory();
   bool quiet = false;
   bool verbose = false;
 };
@@ -86,6 +88,7 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       cli::stats_option(o.stats_path,
                         "write counts, time per stage, peak memory, quality and distance as JSON"),
       cli::threads_option(t.threads),
+      cli::max_memory_option(o.max_memory),
       cli::quiet_option(o.quiet),
       cli::verbose_option(o.verbose,
                           "also print each stage as it starts and ends, and each improvement pass"),
@@ -133,7 +136,9 @@ int tetrahedralize(const std::vector<std::string>& args, std::ostream& out, std:
     if (!io::is_volume_format(registry, files[1])) {
       throw UsageError(files[1] + ": the output must be a volume format (.msh, .mesh or .vtu)");
     }
+    check_file_fits(files[0], options.max_memory);
     const TriangleSoup input = io::read_surface(registry, files[0]);
+    check_faces_fit(files[0], input.num_triangles(), kPipelineBytesPerFace, options.max_memory);
     tetmesh::Logger logger;
     if (!options.quiet) {
       logger.on_message = [&](tetmesh::LogLevel level, std::string_view text) {

@@ -3,7 +3,10 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <sstream>
+
+#include <unistd.h>
 
 namespace mr::cli {
 namespace {
@@ -102,6 +105,22 @@ Option threads_option(int& threads) {
 
 Option stats_option(std::string& path, const std::string& help) {
   return {"--stats", "", "FILE", help, [&path](const std::string& v) { path = v; }};
+}
+
+std::size_t default_max_memory() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES);
+  const long page_size = ::sysconf(_SC_PAGESIZE);
+  if (pages <= 0 || page_size <= 0) return std::numeric_limits<std::size_t>::max();
+  return static_cast<std::size_t>(pages) / 10 * 8 * static_cast<std::size_t>(page_size);
+}
+
+Option max_memory_option(std::size_t& bytes) {
+  return {"--max-memory", "", "MB",
+          "refuse (exit 2) an input whose run would need more memory than this, before allocating "
+          "for it (default: 80% of this machine's memory)",
+          [&bytes](const std::string& v) {
+            bytes = static_cast<std::size_t>(parse_int("--max-memory", v, 1, 1 << 30)) << 20;
+          }};
 }
 
 Option ascii_option(bool& binary) {

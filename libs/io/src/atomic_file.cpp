@@ -1,10 +1,14 @@
 #include <mr/core/errors.h>
 #include <mr/io/atomic_file.h>
+#include <mr/io/unfinished_files.h>
 
 #include <atomic>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <system_error>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 namespace mr::io {
@@ -25,24 +29,73 @@ std::filesystem::path temporary_sibling(const std::filesystem::path& destination
   return destination.parent_path() / name;
 }
 
-}  // namespace
+std::filesystem::path folder_of(const std::filesystem::path& destination) {
+  return destination.has_parent_path() ? destination.parent_path() : std::filesystem::path(".");
+}
 
-void write_atomically(const std::filesystem::path& destination,
-                      const std::function<void(const std::filesystem::path&)>& write) {
-  const std::filesystem::path temp = temporary_sibling(destination);
+// The path through which a process reaches one of its open files.
+std::filesystem::path descriptor_path(int descriptor) {
+  return std::filesystem::path("/proc/self/fd") / std::to_string(descriptor);
+}
+
+class Descriptor {
+ public:
+  explicit Descriptor(int descriptor) : descriptor_(descriptor) {}
+  ~Descriptor() {
+    if (descriptor_ >= 0) ::close(descriptor_);
+  }
+  Descriptor(const Descriptor&) = delete;
+  Descriptor& operator=(const Descriptor&) = delete;
+  int get() const { return descriptor_; }
+
+ private:
+  int descriptor_;
+};
+
+// Moves a complete file at `temp` over `destination` in one rename; removes `temp` if that fails.
+void move_into_place(const std::filesystem::path& temp, const std::filesystem::path& destination) {
+  std::error_code ec;
+  std::filesystem::rename(temp, destination, ec);
+  if (!ec) return;
   std::error_code ignored;
+  std::filesystem::remove(temp, ignored);
+  throw RunError("cannot move the output into place at " + destination.string() + ": " + ec.message());
+}
+
+// For filesystems without unnamed files: write under a hidden temporary name.
+// A run stopped by a signal removes it; one killed outright may leave it behind.
+void write_through_named_temporary(const std::filesystem::path& destination,
+                                   const std::function<void(const std::filesystem::path&)>& write) {
+  const std::filesystem::path temp = temporary_sibling(destination);
+  const UnfinishedFile listed(temp);
   try {
     write(temp);
     if (!std::filesystem::exists(temp))
       throw RunError("writing " + destination.string() + " produced no file");
-    std::error_code ec;
-    std::filesystem::rename(temp, destination, ec);
-    if (ec)
-      throw RunError("cannot move the output into place at " + destination.string() + ": " + ec.message());
   } catch (...) {
+    std::error_code ignored;
     std::filesystem::remove(temp, ignored);
     throw;
   }
+  move_into_place(temp, destination);
+}
+
+}  // namespace
+
+void write_atomically(const std::filesystem::path& destination,
+                      const std::function<void(const std::filesystem::path&)>& write) {
+  // An unnamed file in the destination's folder (O_TMPFILE): until it is given a
+  // name, a run killed at any moment, even by SIGKILL, leaves nothing behind.
+  const Descriptor unnamed(::open(folder_of(destination).c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666));
+  if (unnamed.get() < 0) return write_through_named_temporary(destination, write);
+  write(descriptor_path(unnamed.get()));
+  // Named only once complete, then moved over the destination in one rename.
+  const std::filesystem::path temp = temporary_sibling(destination);
+  const UnfinishedFile listed(temp);
+  if (::linkat(AT_FDCWD, descriptor_path(unnamed.get()).c_str(), AT_FDCWD, temp.c_str(), AT_SYMLINK_FOLLOW) !=
+      0)
+    throw RunError("cannot name the output " + destination.string() + ": " + std::strerror(errno));
+  move_into_place(temp, destination);
 }
 
 }  // namespace mr::io

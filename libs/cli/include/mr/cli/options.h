@@ -2,6 +2,7 @@
 // Command-line options declared once in a table that drives both parsing and
 // --help, so the two never disagree.
 
+#include <cstddef>
 #include <functional>
 #include <iosfwd>
 #include <span>
@@ -41,6 +42,10 @@ Option verbose_option(bool& verbose, const std::string& help);    ///< -v, --ver
 Option threads_option(int& threads);                              ///< -j, --threads N (0: all)
 Option stats_option(std::string& path, const std::string& help);  ///< --stats FILE
 Option ascii_option(bool& binary);                                ///< --ascii: binary = false
+Option max_memory_option(std::size_t& bytes);                     ///< --max-memory MB
+
+/// Most of this machine's memory (80% of physical): the default of --max-memory.
+std::size_t default_max_memory();
 
 /// Value parsers for Option::apply; throw UsageError naming the option.
 double parse_double(const std::string& option, const std::string& value);
