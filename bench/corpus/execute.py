@@ -10,16 +10,22 @@ Wall time is measured here; CPU time (user + sys) comes from os.wait4's rusage (
 reaped tool), peak memory from GNU time's %M (or from wait4 when GNU time is missing).
 """
 import os
+import pathlib
 import re
 import shutil
 import signal
+import sys
 import threading
 import time
 import subprocess
 from dataclasses import dataclass
 
+# One reading of GNU time's report, shared with meshrepair-batch (its runner imports only the
+# standard library).
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "tools" / "meshrepair-batch"))
+from meshrepair_batch.runner import TIME_FORMAT, read_gnu_time  # noqa: E402
+
 GNU_TIME = "/usr/bin/time" if os.access("/usr/bin/time", os.X_OK) else None
-TIME_FORMAT = "%e %U %S %M %x"
 GRACE_S = 5.0  # after killing the tool on timeout, time for GNU time to report and exit
 
 
@@ -103,21 +109,6 @@ def _wait(pid, deadline, stop):
         pause = min(pause * 1.5, 0.05)
 
 
-def _read_gnu_time(path):
-    """(returncode, signal, peak_mb) of the tool as GNU time saw it, or None."""
-    try:
-        with open(path, encoding="utf-8", errors="replace") as f:
-            text = f.read()
-    except OSError:
-        return None
-    numbers = re.search(r"^([\d.]+) ([\d.]+) ([\d.]+) (\d+) (\d+)\s*$", text, re.M)
-    if not numbers:
-        return None
-    killed = re.search(r"terminated by signal (\d+)", text)
-    sig = int(killed.group(1)) if killed else None
-    return (None if sig else int(numbers.group(5))), sig, int(numbers.group(4)) / 1024.0
-
-
 def run_limited(command, cwd, limits, log_base, stop=None, env=None):
     """Runs command to completion, timeout or stop, logging to log_base.{stdout,stderr}.txt.
 
@@ -152,7 +143,7 @@ def run_limited(command, cwd, limits, log_base, stop=None, env=None):
     sig = os.WTERMSIG(status) if os.WIFSIGNALED(status) else None
     code = os.WEXITSTATUS(status) if os.WIFEXITED(status) else None
     peak = usage.ru_maxrss / 1024.0
-    reported = _read_gnu_time(rusage_path) if GNU_TIME else None
+    reported = read_gnu_time(rusage_path) if GNU_TIME else None
     if reported:
         code, sig, peak = reported
     return Outcome(code, sig, timed_out, wall, usage.ru_utime, usage.ru_stime, peak, out_path, err_path)

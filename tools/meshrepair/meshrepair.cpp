@@ -1,5 +1,7 @@
 #include "meshrepair.h"
+#include "fast_path.h"
 #include "holes_only_repair.h"
+#include "memory_budget.h"
 #include "repair_stats.h"
 #include "surface_output.h"
 
@@ -19,15 +21,6 @@
 namespace mr::tools {
 namespace {
 
-// The fast path needs a valid embedding, not well-shaped interior tets, so
-// its background mesh has no voxel lattice: lattice points make every input
-// triangle cross many more tets (docs/ARCHITECTURE.md, "Repair").
-tetmesh::TetrahedralizeOptions repair_defaults() {
-  tetmesh::TetrahedralizeOptions options;
-  options.lattice_spacing_rel = 0.0;
-  return options;
-}
-
 struct ToolOptions {
   tetmesh::TetrahedralizeOptions tetrahedralize = repair_defaults();
   io::WriteOptions write;
@@ -35,6 +28,7 @@ struct ToolOptions {
   bool cleanup = true;
   bool remesh = false;  ///< rebuild the surface even when holes are all it lacks
   std::string stats_path;
+  std::size_t max_memory = cli::default_max_memory();
   bool quiet = false;
   bool verbose = false;
 };
@@ -88,6 +82,7 @@ cli::ToolSpec make_spec(ToolOptions& o) {
                         "write input defects, output figures (faces, genus, volume, Hausdorff distances both "
                         "ways) and seconds per stage as JSON"),
       cli::threads_option(t.threads),
+      cli::max_memory_option(o.max_memory),
       cli::quiet_option(o.quiet),
       cli::verbose_option(o.verbose, "also print each stage as it starts and ends"),
   };
@@ -178,33 +173,24 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
          std::ostream& err) {
   const io::Registry registry = io::make_default_registry();
   auto start = std::chrono::steady_clock::now();
+  check_file_fits(files[0], options.max_memory);
   const TriangleSoup input = io::read_surface(registry, files[0]);
   const double seconds_read = seconds_since(start);
+  check_faces_fit(files[0], input.num_triangles(), kPipelineBytesPerFace, options.max_memory);
   std::string declined;
   if (try_holes_only(options, registry, files, input, seconds_read, declined, out)) return;
   if (options.verbose && !options.quiet) err << "meshrepair: rebuilding the surface (" << declined << ")\n";
-  tetmesh::PipelineOptions pipeline_options;
-  pipeline_options.tetrahedralize = options.tetrahedralize;
-  pipeline_options.filter = true;
-  pipeline_options.keep_rejected = true;  // the manifold fix may add some back
-  // |w| > 1/2: a solid whose faces all point inward is repaired too (the
-  // peeled surface is oriented by the tets, so it comes out outward).
-  pipeline_options.tetrahedralize.winding_rule = tetmesh::WindingRule::absolute;
-  pipeline_options.improve = false;  // the fast path: a valid embedding, not well-shaped tets
-  const tetmesh::PipelineResult pipeline =
-      tetmesh::tetrahedralize(input, pipeline_options, make_logger(options, err));
+  const tetmesh::PipelineResult pipeline = tetmesh::tetrahedralize(
+      input, repair_pipeline_options(options.tetrahedralize), make_logger(options, err));
 
-  repair::RepairOptions repair_options;
-  repair_options.epsilon = pipeline.parameters.epsilon;
-  repair_options.threads = options.tetrahedralize.threads;
-  repair_options.cleanup = options.cleanup;
+  repair::RepairOptions repair_options =
+      surface_repair_options(pipeline, options.tetrahedralize.threads, options.cleanup);
   io::WriteOptions write_options = options.write;
   repair_options.output_grid =
       output_grid(registry, files[1], pipeline.parameters.epsilon, options, write_options);
   repair_options.finer_output_grid = finer_output_grid(registry, files[1], options, write_options);
-  std::vector<std::uint8_t> inside(pipeline.mesh.tet_labels.begin(), pipeline.mesh.tet_labels.end());
   const repair::RepairResult repaired =
-      repair::repair_surface_from_tets(pipeline.mesh, inside, input, repair_options);
+      repair::repair_surface_from_tets(pipeline.mesh, inside_labels(pipeline), input, repair_options);
   if (options.verbose && !options.quiet) {
     for (const repair::StageTime& stage : repaired.stages)
       err << "meshrepair: end " << stage.name << " (" << stage.seconds << " s)\n";

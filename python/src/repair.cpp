@@ -1,0 +1,121 @@
+// repair(): the pipeline of the meshrepair tool (tools/meshrepair/meshrepair.cpp,
+// run()) on arrays instead of files: the holes-only path when holes are the
+// input's only defects, else the tetrahedral fast path and the surface repair.
+
+#include "arrays.h"
+#include "bindings.h"
+#include "options.h"
+
+#include <fast_path.h>
+#include <holes_only_repair.h>
+#include <mr/cli/run_tool.h>
+#include <mr/repair/repair.h>
+#include <mr/tetmesh/tetrahedralize.h>
+
+#include <string>
+#include <utility>
+
+namespace mr::python {
+namespace {
+
+struct RepairArgs {
+  tetmesh::TetrahedralizeOptions tetrahedralize = tools::repair_defaults();
+  bool remesh = false;
+  bool cleanup = true;
+  CoordinateGrid grid = CoordinateGrid::doubles();
+};
+
+// Fast path of the tetrahedralization, then the boundary of the kept tets
+// made manifold, peeled and cleaned up inside the envelope of the input.
+TriangleSoup rebuild_through_tets(const TriangleSoup& input, const RepairArgs& args) {
+  const tetmesh::PipelineResult pipeline =
+      tetmesh::tetrahedralize(input, tools::repair_pipeline_options(args.tetrahedralize));
+  repair::RepairOptions repair_options =
+      tools::surface_repair_options(pipeline, args.tetrahedralize.threads, args.cleanup);
+  repair_options.output_grid = [grid = args.grid](const Vec3d&, const Vec3d&) { return grid; };
+  return repair::repair_surface_from_tets(pipeline.mesh, tools::inside_labels(pipeline), input,
+                                          repair_options)
+      .surface;
+}
+
+TriangleSoup repair_soup(const TriangleSoup& input, const RepairArgs& args) {
+  if (!args.remesh) {
+    tools::HolesOnlyRepair holes = tools::repair_holes_only(input, args.grid);
+    if (holes.fill) return std::move(holes.fill->surface);
+  }
+  return rebuild_through_tets(input, args);
+}
+
+constexpr const char* kDoc = R"(Turn any triangle surface into a watertight one.
+
+The meshrepair tool on arrays. The output is closed, edge- and vertex-manifold,
+oriented outward, free of self-intersections and zero-area faces, and within
+epsilon of the input wherever the input had surface (holes and gaps are
+filled). An input whose only defects are holes keeps every face and gets
+faired patches (unless remesh=True); any other input is rebuilt through the
+tetrahedral fast path.
+
+Args:
+    vertices: (N, 3) array of real numbers (any float or integer dtype).
+    faces: (M, 3) array of integer vertex indices; may be a soup (duplicated,
+        unwelded, degenerate faces).
+    epsilon: envelope radius relative to the bounding-box diagonal.
+    epsilon_abs: absolute envelope radius; overrides epsilon when > 0.
+    lattice: voxel-stuffing lattice spacing of the background mesh relative
+        to the bounding-box diagonal (0: none).
+    snap: snap the input to a grid of snap * epsilon (a power of two at most)
+        before inserting it; 0 inserts the coordinates as they are.
+    skip_simplify: insert the input as it is, without simplifying it first.
+    remesh: rebuild the surface through the tet mesh even when holes are its
+        only defect.
+    cleanup: collapse and flip edges of the peeled surface inside the envelope.
+    grid: "float64", or "float32" for positions that stay watertight once
+        written as float32 (STL, GLB).
+    threads: worker threads; 0 uses all hardware threads.
+
+Returns:
+    (vertices, faces): float64 (N, 3) and int64 (M, 3) arrays.
+
+Raises:
+    ValueError: bad arrays or options.
+    meshrepair.Error: the repair could not complete (the tool's message).
+)";
+
+}  // namespace
+
+void bind_repair(py::module_& m) {
+  const RepairArgs d;
+  m.def(
+      "repair",
+      [](const ArrayLike& vertices, const ArrayLike& faces, double epsilon, double epsilon_abs,
+         double lattice, double snap, bool skip_simplify, bool remesh, bool cleanup, const std::string& grid,
+         int threads) {
+        const TriangleSoup input = soup_from_arrays(vertices, faces);
+        RepairArgs args;
+        args.tetrahedralize.epsilon_rel = epsilon;
+        args.tetrahedralize.epsilon_abs = epsilon_abs;
+        args.tetrahedralize.lattice_spacing_rel = lattice;
+        args.tetrahedralize.snap_fraction = snap;
+        args.tetrahedralize.skip_simplify = skip_simplify;
+        args.tetrahedralize.threads = checked_threads(threads);
+        args.remesh = remesh;
+        args.cleanup = cleanup;
+        args.grid = grid_named(grid);
+        const TriangleSoup output = without_gil([&] {
+          TriangleSoup surface;
+          cli::run_with_threads(args.tetrahedralize.threads, [&] { surface = repair_soup(input, args); });
+          return surface;
+        });
+        return soup_to_arrays(output);
+      },
+      kDoc, py::arg("vertices"), py::arg("faces"), py::kw_only(),
+      py::arg("epsilon") = d.tetrahedralize.epsilon_rel,
+      py::arg("epsilon_abs") = d.tetrahedralize.epsilon_abs,
+      py::arg("lattice") = d.tetrahedralize.lattice_spacing_rel,
+      py::arg("snap") = d.tetrahedralize.snap_fraction,
+      py::arg("skip_simplify") = d.tetrahedralize.skip_simplify, py::arg("remesh") = d.remesh,
+      py::arg("cleanup") = d.cleanup, py::arg("grid") = "float64",
+      py::arg("threads") = d.tetrahedralize.threads);
+}
+
+}  // namespace mr::python
