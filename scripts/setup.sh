@@ -13,6 +13,10 @@ packages=(
   libdraco-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtbb-dev catch2 libbenchmark-dev
   # command-line peers and checkers used by tests and benchmarks
   draco gmsh tetgen admesh time util-linux python3 python3-numpy python3-meshio python3-matplotlib
+  # the Python module, the batch tool on Dask, and their tests
+  pybind11-dev python3-dev python3-pytest python3-distributed python3-dask
+  # formatting, fuzzing and sanitizer runtimes
+  clang-format clang libfuzzer-14-dev libclang-rt-14-dev
 )
 
 missing=()

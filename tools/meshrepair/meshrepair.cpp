@@ -3,6 +3,7 @@
 #include "holes_only_repair.h"
 #include "memory_budget.h"
 #include "repair_stats.h"
+#include "surface_input.h"
 #include "surface_output.h"
 
 #include <mr/check/written_file.h>
@@ -177,6 +178,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   const TriangleSoup input = io::read_surface(registry, files[0]);
   const double seconds_read = seconds_since(start);
   check_faces_fit(files[0], input.num_triangles(), kPipelineBytesPerFace, options.max_memory);
+  check_has_area(files[0], input);
   std::string declined;
   if (try_holes_only(options, registry, files, input, seconds_read, declined, out)) return;
   if (options.verbose && !options.quiet) err << "meshrepair: rebuilding the surface (" << declined << ")\n";

@@ -1,5 +1,6 @@
 #include "tetrahedralize.h"
 #include "memory_budget.h"
+#include "surface_input.h"
 
 #include <mr/check/distance.h>
 #include <mr/check/tet_check.h>
@@ -139,6 +140,7 @@ int tetrahedralize(const std::vector<std::string>& args, std::ostream& out, std:
     check_file_fits(files[0], options.max_memory);
     const TriangleSoup input = io::read_surface(registry, files[0]);
     check_faces_fit(files[0], input.num_triangles(), kPipelineBytesPerFace, options.max_memory);
+    check_has_area(files[0], input);
     tetmesh::Logger logger;
     if (!options.quiet) {
       logger.on_message = [&](tetmesh::LogLevel level, std::string_view text) {

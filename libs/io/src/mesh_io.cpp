@@ -27,30 +27,38 @@ void check_output_path(const std::filesystem::path& path) {
   if (std::filesystem::is_directory(path, ec)) throw UsageError(path.string() + " is a directory");
 }
 
-// An input with nothing to work on is a bad input, not an empty result: a file
-// of random bytes named .obj parses as an OBJ without a single face.
-void check_has_triangles(const TriangleSoup& soup, const std::filesystem::path& path) {
-  if (soup.triangles.empty()) throw InputError(path.string(), "no triangles found");
+// What a reader returns must be consistent (indices in range, finite
+// coordinates) and hold something to work on: an input with nothing is a bad
+// input, not an empty result (random bytes named .obj parse as an OBJ
+// without a single face).
+void check_surface(const TriangleSoup& soup, const std::string& name) {
+  if (std::string problem = find_soup_inconsistency(soup); !problem.empty()) throw InputError(name, problem);
+  if (soup.triangles.empty()) throw InputError(name, "no triangles found");
 }
 
-void check_has_tets(const TetMesh& mesh, const std::filesystem::path& path) {
-  if (mesh.tets.empty()) throw InputError(path.string(), "no tets found");
+void check_volume(const TetMesh& mesh, const std::string& name) {
+  if (std::string problem = find_tet_mesh_inconsistency(mesh); !problem.empty())
+    throw InputError(name, problem);
+  if (mesh.tets.empty()) throw InputError(name, "no tets found");
+}
+
+[[noreturn]] void throw_no_bytes_reader(const Format& format) {
+  throw UsageError("format " + format.name + " cannot be read from memory");
 }
 
 // Runs a format's reader. Our own errors pass through; anything else a
 // library throws (a parser's exception, out of memory on a hostile size)
 // becomes an InputError naming the file, never a bare library message.
 template <class Read>
-auto read_guarded(const Format& format, const std::filesystem::path& path, const Read& read) {
+auto read_guarded(const Format& format, const std::string& name, const Read& read) {
   try {
     return read();
   } catch (const Error&) {
     throw;
   } catch (const std::bad_alloc&) {
-    throw InputError(path.string(),
-                     "cannot be read as " + format.name + ": it needs more memory than is available");
+    throw InputError(name, "cannot be read as " + format.name + ": it needs more memory than is available");
   } catch (const std::exception& e) {
-    throw InputError(path.string(), "cannot be read as " + format.name + ": " + library_error_text(e));
+    throw InputError(name, "cannot be read as " + format.name + ": " + library_error_text(e));
   }
 }
 
@@ -81,10 +89,8 @@ TetMesh read_volume(const Registry& registry, const std::filesystem::path& path,
   if (!format.read_volume)
     throw InputError(path.string(), "is a surface format (" + format.name + "), not a volume mesh");
   check_readable(path);
-  TetMesh mesh = read_guarded(format, path, [&] { return format.read_volume(path, options); });
-  if (std::string problem = find_tet_mesh_inconsistency(mesh); !problem.empty())
-    throw InputError(path.string(), problem);
-  check_has_tets(mesh, path);
+  TetMesh mesh = read_guarded(format, path.string(), [&] { return format.read_volume(path, options); });
+  check_volume(mesh, path.string());
   return mesh;
 }
 
@@ -93,10 +99,32 @@ TriangleSoup read_surface(const Registry& registry, const std::filesystem::path&
   const Format& format = registry.resolve_for_read(path, options.format);
   if (!format.read_surface) return extract_boundary(read_volume(registry, path, options));
   check_readable(path);
-  TriangleSoup soup = read_guarded(format, path, [&] { return format.read_surface(path, options); });
-  if (std::string problem = find_soup_inconsistency(soup); !problem.empty())
-    throw InputError(path.string(), problem);
-  check_has_triangles(soup, path);
+  TriangleSoup soup = read_guarded(format, path.string(), [&] { return format.read_surface(path, options); });
+  check_surface(soup, path.string());
+  return soup;
+}
+
+TetMesh read_volume_bytes(const Registry& registry, std::string_view bytes, const std::string& name,
+                          const ReadOptions& options) {
+  const Format& format = registry.resolve_for_read(name, options.format);
+  if (!format.read_volume)
+    throw InputError(name, "is a surface format (" + format.name + "), not a volume mesh");
+  if (!format.read_volume_bytes) throw_no_bytes_reader(format);
+  if (bytes.empty()) throw InputError(name, "the file is empty");
+  TetMesh mesh = read_guarded(format, name, [&] { return format.read_volume_bytes(bytes, name, options); });
+  check_volume(mesh, name);
+  return mesh;
+}
+
+TriangleSoup read_surface_bytes(const Registry& registry, std::string_view bytes, const std::string& name,
+                                const ReadOptions& options) {
+  const Format& format = registry.resolve_for_read(name, options.format);
+  if (!format.read_surface) return extract_boundary(read_volume_bytes(registry, bytes, name, options));
+  if (!format.read_surface_bytes) throw_no_bytes_reader(format);
+  if (bytes.empty()) throw InputError(name, "the file is empty");
+  TriangleSoup soup =
+      read_guarded(format, name, [&] { return format.read_surface_bytes(bytes, name, options); });
+  check_surface(soup, name);
   return soup;
 }
 

@@ -1,4 +1,5 @@
 #include <mr/core/errors.h>
+#include <mr/io/file_bytes.h>
 #include <mr/io/registry.h>
 
 #include <algorithm>
@@ -27,6 +28,18 @@ void Registry::add(Format format) {
   if (by_name(format.name)) throw std::logic_error("format registered twice: " + format.name);
   for (const std::string& ext : format.extensions)
     if (by_extension("x" + ext)) throw std::logic_error("extension registered twice: " + ext);
+  if (format.read_surface_bytes && !format.read_surface)
+    format.read_surface = [read = format.read_surface_bytes](const std::filesystem::path& path,
+                                                             const ReadOptions& options) {
+      const std::vector<char> bytes = read_file_bytes(path);
+      return read(std::string_view(bytes.data(), bytes.size()), path.string(), options);
+    };
+  if (format.read_volume_bytes && !format.read_volume)
+    format.read_volume = [read = format.read_volume_bytes](const std::filesystem::path& path,
+                                                           const ReadOptions& options) {
+      const std::vector<char> bytes = read_file_bytes(path);
+      return read(std::string_view(bytes.data(), bytes.size()), path.string(), options);
+    };
   formats_.push_back(std::move(format));
 }
 

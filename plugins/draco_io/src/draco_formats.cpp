@@ -5,15 +5,13 @@
 
 #include "draco_codec_detail.h"
 
-#include <mr/io/file_bytes.h>
 #include <mr/io/output_file.h>
 
 namespace mr::plugins {
 namespace {
 
-TriangleSoup read_drc(const std::filesystem::path& path, const io::ReadOptions&) {
-  const std::vector<char> bytes = io::read_file_bytes(path);
-  return detail::decode_draco_mesh(std::string_view(bytes.data(), bytes.size()), path.string(), {}, true);
+TriangleSoup read_drc(std::string_view bytes, const std::string& name, const io::ReadOptions&) {
+  return detail::decode_draco_mesh(bytes, name, {}, true);
 }
 
 void write_drc(const TriangleSoup& soup, const std::filesystem::path& path, const io::WriteOptions& options) {
@@ -31,7 +29,7 @@ void register_draco_formats(io::Registry& registry) {
   drc.description =
       "Google Draco compressed mesh (normals, uvs, colours and face regions kept; "
       "positions quantized, see --draco-position-bits)";
-  drc.read_surface = read_drc;
+  drc.read_surface_bytes = read_drc;
   drc.write_surface = write_drc;
   drc.position_grid = [](const io::WriteOptions& options, const Vec3d& lo, const Vec3d& hi) {
     return io::draco_position_grid(options.draco, lo, hi);

@@ -12,9 +12,8 @@ void register_gltf_formats(io::Registry& registry) {
     format.extensions = {extension};
     format.kind = io::MeshKind::surface;
     format.description = description;
-    format.read_surface = [glb](const std::filesystem::path& path, const io::ReadOptions&) {
-      return gltf::read_gltf(path, glb);
-    };
+    format.read_surface_bytes = [glb](std::string_view bytes, const std::string& name,
+                                      const io::ReadOptions&) { return gltf::read_gltf(bytes, name, glb); };
     format.write_surface = [glb](const TriangleSoup& soup, const std::filesystem::path& path,
                                  const io::WriteOptions& options) {
       gltf::write_gltf(soup, path, options, glb);

@@ -105,10 +105,8 @@ std::string trim(std::string text) {
 
 }  // namespace
 
-tinygltf::Model load_model(const std::vector<char>& bytes, const std::filesystem::path& path,
-                           bool require_glb) {
+tinygltf::Model load_model(std::string_view all, const std::filesystem::path& path, bool require_glb) {
   const std::string name = path.string();
-  const std::string_view all(bytes.data(), bytes.size());
   const bool glb = require_glb || has_glb_magic(all);
   if (all.size() > 0xFFFFFFFFull) throw InputError(name, "glTF files of 4 GB or more are not supported");
 

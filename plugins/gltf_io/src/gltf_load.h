@@ -7,13 +7,13 @@
 #include <tiny_gltf.h>
 
 #include <filesystem>
-#include <vector>
+#include <string_view>
 
 namespace mr::plugins::gltf {
 
 /// `require_glb`: the file was named or forced as GLB, so it must carry the
 /// GLB magic. Otherwise GLB content is still recognised by its magic.
-tinygltf::Model load_model(const std::vector<char>& bytes, const std::filesystem::path& path,
-                           bool require_glb);
+/// External buffers are looked up next to `path`.
+tinygltf::Model load_model(std::string_view bytes, const std::filesystem::path& path, bool require_glb);
 
 }  // namespace mr::plugins::gltf

@@ -7,7 +7,6 @@
 #include "gltf_soup_builder.h"
 
 #include <mr/core/errors.h>
-#include <mr/io/file_bytes.h>
 
 #include <array>
 #include <cmath>
@@ -108,8 +107,8 @@ bool is_triangle_mode(int mode, const std::string& path) {
 
 class GltfReader {
  public:
-  GltfReader(const tinygltf::Model& model, const std::filesystem::path& path)
-      : model_(model), path_(path.string()), accessors_(model, path_), builder_(path_, buffer_bytes(model)) {}
+  GltfReader(const tinygltf::Model& model, const std::string& path)
+      : model_(model), path_(path), accessors_(model, path_), builder_(path_, buffer_bytes(model)) {}
 
   TriangleSoup read() {
     check_required_extensions(model_, path_);
@@ -176,10 +175,9 @@ class GltfReader {
 
 }  // namespace
 
-TriangleSoup read_gltf(const std::filesystem::path& path, bool require_glb) {
-  const std::vector<char> bytes = io::read_file_bytes(path);
-  const tinygltf::Model model = load_model(bytes, path, require_glb);
-  return GltfReader(model, path).read();
+TriangleSoup read_gltf(std::string_view bytes, const std::string& name, bool require_glb) {
+  const tinygltf::Model model = load_model(bytes, name, require_glb);
+  return GltfReader(model, name).read();
 }
 
 }  // namespace mr::plugins::gltf

@@ -12,12 +12,15 @@
 
 #include <mr/core/triangle_soup.h>
 
-#include <filesystem>
+#include <string>
+#include <string_view>
 
 namespace mr::plugins::gltf {
 
-/// `require_glb`: the file is read as GLB (it must carry the GLB magic).
-/// Throws InputError naming `path` on anything that cannot be read.
-TriangleSoup read_gltf(const std::filesystem::path& path, bool require_glb);
+/// Reads a file's bytes; `name` is the file's path: messages name it, and
+/// external buffers are looked up next to it. `require_glb`: the file is
+/// read as GLB (it must carry the GLB magic). Throws InputError naming
+/// `name` on anything that cannot be read.
+TriangleSoup read_gltf(std::string_view bytes, const std::string& name, bool require_glb);
 
 }  // namespace mr::plugins::gltf

@@ -18,7 +18,6 @@
 #include "formats.h"
 #include "soup_importer.h"
 
-#include <mr/io/file_bytes.h>
 #include <mr/io/text_cursor.h>
 
 namespace mr::plugins::stl_obj_off_ply {
@@ -210,9 +209,8 @@ class ObjParser {
 
 }  // namespace
 
-TriangleSoup read_obj(const std::filesystem::path& path) {
-  const std::vector<char> bytes = io::read_file_bytes(path);
-  return ObjParser(path.string(), std::string_view(bytes.data(), bytes.size())).parse();
+TriangleSoup read_obj(std::string_view bytes, const std::string& name) {
+  return ObjParser(name, bytes).parse();
 }
 
 }  // namespace mr::plugins::stl_obj_off_ply

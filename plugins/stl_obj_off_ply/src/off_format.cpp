@@ -15,7 +15,6 @@
 #include "formats.h"
 #include "soup_importer.h"
 
-#include <mr/io/file_bytes.h>
 #include <mr/io/output_file.h>
 #include <mr/io/text_cursor.h>
 
@@ -163,9 +162,8 @@ class OffParser {
 
 }  // namespace
 
-TriangleSoup read_off(const std::filesystem::path& path) {
-  const std::vector<char> bytes = io::read_file_bytes(path);
-  return OffParser(path.string(), std::string_view(bytes.data(), bytes.size())).parse();
+TriangleSoup read_off(std::string_view bytes, const std::string& name) {
+  return OffParser(name, bytes).parse();
 }
 
 void write_off(const TriangleSoup& soup, const std::filesystem::path& path) {

@@ -19,8 +19,6 @@
 #include "ply_source.h"
 #include "soup_importer.h"
 
-#include <mr/io/file_bytes.h>
-
 #include <array>
 
 namespace mr::plugins::stl_obj_off_ply {
@@ -226,10 +224,8 @@ TriangleSoup read_body(const PlyHeader& header, Source source) {
 
 }  // namespace
 
-TriangleSoup read_ply(const std::filesystem::path& path) {
-  const std::vector<char> bytes = io::read_file_bytes(path);
-  const std::string name = path.string();
-  const PlyHeader header = parse_ply_header(name, std::string_view(bytes.data(), bytes.size()));
+TriangleSoup read_ply(std::string_view bytes, const std::string& name) {
+  const PlyHeader header = parse_ply_header(name, bytes);
   const char* body = bytes.data() + header.body_offset;
   const std::size_t size = bytes.size() - header.body_offset;
   switch (header.encoding) {

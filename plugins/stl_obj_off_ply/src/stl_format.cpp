@@ -24,14 +24,13 @@ namespace {
 constexpr std::size_t kHeaderSize = 80;
 constexpr std::size_t kFacetSize = 50;
 
-std::uint64_t binary_facet_count(const std::vector<char>& bytes) {
+std::uint64_t binary_facet_count(std::string_view bytes) {
   std::uint32_t count = 0;
   std::memcpy(&count, bytes.data() + kHeaderSize, sizeof(count));
   return count;
 }
 
-bool looks_like_ascii(const std::vector<char>& bytes) {
-  std::string_view text(bytes.data(), bytes.size());
+bool looks_like_ascii(std::string_view text) {
   const std::size_t start = text.find_first_not_of(" \t\r\n");
   if (start == std::string_view::npos || !io::istarts_with(text.substr(start), "solid")) return false;
   const std::string_view sample = text.substr(0, 1024);
@@ -39,7 +38,7 @@ bool looks_like_ascii(const std::vector<char>& bytes) {
                       [](char c) { return static_cast<unsigned char>(c) < 9 || c == 127; });
 }
 
-TriangleSoup read_binary_stl(const std::string& path, const std::vector<char>& bytes) {
+TriangleSoup read_binary_stl(const std::string& path, std::string_view bytes) {
   io::ByteReader reader(path, bytes.data(), bytes.size());
   reader.skip(kHeaderSize, "the 80-byte header");
   const std::uint32_t count = reader.read<std::uint32_t>("the facet count");
@@ -143,16 +142,14 @@ class AsciiStlParser {
 
 }  // namespace
 
-TriangleSoup read_stl(const std::filesystem::path& path) {
-  const std::vector<char> bytes = io::read_file_bytes(path);
+TriangleSoup read_stl(std::string_view bytes, const std::string& name) {
   const bool exact_binary_size = bytes.size() >= kHeaderSize + 4 &&
                                  kHeaderSize + 4 + binary_facet_count(bytes) * kFacetSize == bytes.size();
-  if (!exact_binary_size && looks_like_ascii(bytes))
-    return AsciiStlParser(path.string(), std::string_view(bytes.data(), bytes.size())).parse();
+  if (!exact_binary_size && looks_like_ascii(bytes)) return AsciiStlParser(name, bytes).parse();
   if (bytes.size() < kHeaderSize + 4)
-    throw InputError(path.string(), "too short for a binary STL (" + std::to_string(bytes.size()) +
-                                        " bytes, the header alone is 84) and not an ASCII STL");
-  return read_binary_stl(path.string(), bytes);
+    throw InputError(name, "too short for a binary STL (" + std::to_string(bytes.size()) +
+                               " bytes, the header alone is 84) and not an ASCII STL");
+  return read_binary_stl(name, bytes);
 }
 
 }  // namespace mr::plugins::stl_obj_off_ply

@@ -28,7 +28,9 @@ io::Format surface_format(std::string name, std::string extension, std::string d
 
 void register_stl_obj_off_ply_formats(io::Registry& registry) {
   io::Format stl = surface_format("stl", ".stl", "STL, binary (default) or ASCII; corners welded on read");
-  stl.read_surface = [](const std::filesystem::path& path, const io::ReadOptions&) { return read_stl(path); };
+  stl.read_surface_bytes = [](std::string_view bytes, const std::string& name, const io::ReadOptions&) {
+    return read_stl(bytes, name);
+  };
   stl.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path,
                          const io::WriteOptions& options) { write_stl(soup, path, options.binary); };
   stl.position_grid = [](const io::WriteOptions&, const Vec3d&, const Vec3d&) {
@@ -37,19 +39,25 @@ void register_stl_obj_off_ply_formats(io::Registry& registry) {
   registry.add(std::move(stl));
 
   io::Format obj = surface_format("obj", ".obj", "Wavefront OBJ with normals, uvs and usemtl regions");
-  obj.read_surface = [](const std::filesystem::path& path, const io::ReadOptions&) { return read_obj(path); };
+  obj.read_surface_bytes = [](std::string_view bytes, const std::string& name, const io::ReadOptions&) {
+    return read_obj(bytes, name);
+  };
   obj.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path,
                          const io::WriteOptions&) { write_obj(soup, path); };
   registry.add(std::move(obj));
 
   io::Format off = surface_format("off", ".off", "Object File Format (OFF, COFF, NOFF, STOFF)");
-  off.read_surface = [](const std::filesystem::path& path, const io::ReadOptions&) { return read_off(path); };
+  off.read_surface_bytes = [](std::string_view bytes, const std::string& name, const io::ReadOptions&) {
+    return read_off(bytes, name);
+  };
   off.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path,
                          const io::WriteOptions&) { write_off(soup, path); };
   registry.add(std::move(off));
 
   io::Format ply = surface_format("ply", ".ply", "Stanford PLY, binary little endian (default) or ASCII");
-  ply.read_surface = [](const std::filesystem::path& path, const io::ReadOptions&) { return read_ply(path); };
+  ply.read_surface_bytes = [](std::string_view bytes, const std::string& name, const io::ReadOptions&) {
+    return read_ply(bytes, name);
+  };
   ply.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path,
                          const io::WriteOptions& options) { write_ply(soup, path, options.binary); };
   registry.add(std::move(ply));

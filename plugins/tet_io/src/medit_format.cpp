@@ -4,7 +4,6 @@
 #include "tet_formats_internal.h"
 
 #include <mr/core/errors.h>
-#include <mr/io/file_bytes.h>
 #include <mr/io/output_file.h>
 #include <mr/io/text_cursor.h>
 
@@ -179,9 +178,8 @@ void write_cells(io::OutputFile& out, const char* keyword, const std::vector<std
 
 }  // namespace
 
-TetMesh read_medit(const std::filesystem::path& path) {
-  const std::vector<char> bytes = io::read_file_bytes(path);
-  return MeditReader(path.string(), std::string_view(bytes.data(), bytes.size())).read();
+TetMesh read_medit(std::string_view bytes, const std::string& name) {
+  return MeditReader(name, bytes).read();
 }
 
 void write_medit(const TetMesh& mesh, const std::filesystem::path& path) {

@@ -4,8 +4,6 @@
 #include "msh_sections.h"
 #include "tet_formats_internal.h"
 
-#include <mr/io/file_bytes.h>
-
 #include <string>
 
 namespace mr::plugins::tet {
@@ -104,9 +102,6 @@ class MshReader {
 
 }  // namespace
 
-TetMesh read_msh(const std::filesystem::path& path) {
-  const std::vector<char> bytes = io::read_file_bytes(path);
-  return MshReader(path.string(), std::string_view(bytes.data(), bytes.size())).read();
-}
+TetMesh read_msh(std::string_view bytes, const std::string& name) { return MshReader(name, bytes).read(); }
 
 }  // namespace mr::plugins::tet

@@ -10,8 +10,8 @@ void register_tet_formats(io::Registry& registry) {
   msh.extensions = {".msh"};
   msh.kind = io::MeshKind::volume;
   msh.description = "Gmsh MSH 4.1 or 2.2, ASCII or binary (tets, triangles; labels as physical tags)";
-  msh.read_volume = [](const std::filesystem::path& path, const io::ReadOptions&) {
-    return tet::read_msh(path);
+  msh.read_volume_bytes = [](std::string_view bytes, const std::string& name, const io::ReadOptions&) {
+    return tet::read_msh(bytes, name);
   };
   msh.write_volume = tet::write_msh;
   registry.add(std::move(msh));
@@ -21,8 +21,8 @@ void register_tet_formats(io::Registry& registry) {
   medit.extensions = {".mesh"};
   medit.kind = io::MeshKind::volume;
   medit.description = "Medit / INRIA mesh, ASCII (tets, triangles; labels as references)";
-  medit.read_volume = [](const std::filesystem::path& path, const io::ReadOptions&) {
-    return tet::read_medit(path);
+  medit.read_volume_bytes = [](std::string_view bytes, const std::string& name, const io::ReadOptions&) {
+    return tet::read_medit(bytes, name);
   };
   medit.write_volume = [](const TetMesh& mesh, const std::filesystem::path& path, const io::WriteOptions&) {
     tet::write_medit(mesh, path);

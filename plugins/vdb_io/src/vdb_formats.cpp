@@ -10,8 +10,9 @@ void register_vdb_formats(io::Registry& registry) {
   format.extensions = {".vdb"};
   format.kind = io::MeshKind::surface;
   format.description = "OpenVDB narrow-band level set (mesh <-> signed distance grid)";
-  format.read_surface = [](const std::filesystem::path& path, const io::ReadOptions& options) {
-    return vdb::read_level_set(path, options.level_set);
+  format.read_surface_bytes = [](std::string_view bytes, const std::string& name,
+                                 const io::ReadOptions& options) {
+    return vdb::read_level_set(bytes, name, options.level_set);
   };
   format.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path,
                             const io::WriteOptions& options) {

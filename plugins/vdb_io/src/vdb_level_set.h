@@ -6,6 +6,8 @@
 #include <mr/io/options.h>
 
 #include <filesystem>
+#include <string>
+#include <string_view>
 
 namespace mr::plugins::vdb {
 
@@ -16,12 +18,13 @@ namespace mr::plugins::vdb {
 void write_level_set(const TriangleSoup& soup, const std::filesystem::path& path,
                      const io::LevelSetWriteOptions& options);
 
-/// Meshes the level set of the chosen float grid of a .vdb file into
-/// outward-oriented triangles. Throws InputError naming the file.
-TriangleSoup read_level_set(const std::filesystem::path& path, const io::LevelSetReadOptions& options);
+/// Meshes the level set of the chosen float grid of a .vdb file's bytes into
+/// outward-oriented triangles. Throws InputError naming the file (`name`).
+TriangleSoup read_level_set(std::string_view bytes, const std::string& name,
+                            const io::LevelSetReadOptions& options);
 
 /// openvdb::initialize() registers grid and transform types in OpenVDB's own
-/// process-wide registry, which io::File needs before reading or writing. It is
+/// process-wide registry, which io::File and io::Stream need before reading or writing. It is
 /// idempotent and thread-safe; this is the one place that calls it.
 void ensure_openvdb_initialized();
 

@@ -3,11 +3,12 @@
 
 #include <mr/core/errors.h>
 
-#include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 namespace mr::plugins::vdb {
@@ -21,32 +22,32 @@ using openvdb::FloatGrid;
 // The grid named "surface" (what write_level_set makes), else the first
 // float level set, else the first float grid of unknown class (many tools
 // leave the class unset). Fog volumes and other value types are refused.
-std::string choose_grid(openvdb::io::File& file, const std::string& path) {
-  const openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();
-  const openvdb::GridBase* level_set = nullptr;
-  const openvdb::GridBase* unknown = nullptr;
-  for (const openvdb::GridBase::Ptr& grid : *grids) {
-    if (!grid || !grid->isType<FloatGrid>()) continue;
-    if (grid->getName() == "surface") return grid->getName();
-    if (!level_set && grid->getGridClass() == openvdb::GRID_LEVEL_SET) level_set = grid.get();
-    if (!unknown && grid->getGridClass() == openvdb::GRID_UNKNOWN) unknown = grid.get();
+FloatGrid::Ptr choose_grid(const openvdb::GridPtrVec& grids, const std::string& path) {
+  FloatGrid::Ptr level_set, unknown;
+  for (const openvdb::GridBase::Ptr& grid : grids) {
+    FloatGrid::Ptr floats = openvdb::gridPtrCast<FloatGrid>(grid);
+    if (!floats) continue;
+    if (floats->getName() == "surface") return floats;
+    if (!level_set && floats->getGridClass() == openvdb::GRID_LEVEL_SET) level_set = floats;
+    if (!unknown && floats->getGridClass() == openvdb::GRID_UNKNOWN) unknown = floats;
   }
-  if (level_set) return level_set->getName();
-  if (unknown) return unknown->getName();
-  throw InputError(path, grids->empty() ? "the file holds no grids"
-                                        : "the file holds no float level-set grid (found " +
-                                              std::to_string(grids->size()) + " other grids)");
+  if (level_set) return level_set;
+  if (unknown) return unknown;
+  throw InputError(path, grids.empty() ? "the file holds no grids"
+                                       : "the file holds no float level-set grid (found " +
+                                             std::to_string(grids.size()) + " other grids)");
 }
 
-FloatGrid::Ptr read_float_grid(const std::string& path) {
-  openvdb::io::File file(path);
-  // delayLoad = false: read everything now rather than map a file that may change later.
-  file.open(false);
-  const std::string name = choose_grid(file, path);
-  FloatGrid::Ptr grid = openvdb::gridPtrCast<FloatGrid>(file.readGrid(name));
-  file.close();
-  if (!grid) throw InputError(path, "grid '" + name + "' could not be read as a float grid");
-  return grid;
+// io::Stream reads what io::File writes, from memory, all grids at once
+// (delayLoad = false). A read past the end throws (failbit) rather than
+// leaving OpenVDB to go on with values it never read.
+FloatGrid::Ptr read_float_grid(std::string_view bytes, const std::string& path) {
+  std::istringstream in(std::string(bytes), std::ios::binary);
+  in.exceptions(std::ios::failbit | std::ios::badbit);
+  openvdb::io::Stream stream(in, false);
+  const openvdb::GridPtrVecPtr grids = stream.getGrids();
+  if (!grids) throw InputError(path, "the file holds no grids");
+  return choose_grid(*grids, path);
 }
 
 void check_values_finite(const FloatGrid& grid, const std::string& path) {
@@ -89,14 +90,14 @@ TriangleSoup mesh_level_set(const FloatGrid& grid, const io::LevelSetReadOptions
 
 }  // namespace
 
-TriangleSoup read_level_set(const std::filesystem::path& path, const io::LevelSetReadOptions& options) {
+TriangleSoup read_level_set(std::string_view bytes, const std::string& name,
+                            const io::LevelSetReadOptions& options) {
   if (!std::isfinite(options.isovalue)) throw UsageError("the isovalue must be a finite number");
   if (!(options.adaptivity >= 0.0 && options.adaptivity <= 1.0))
     throw UsageError("the adaptivity must be between 0 and 1");
   ensure_openvdb_initialized();
-  const std::string name = path.string();
   try {
-    const FloatGrid::Ptr grid = read_float_grid(name);
+    const FloatGrid::Ptr grid = read_float_grid(bytes, name);
     check_values_finite(*grid, name);
     TriangleSoup soup = mesh_level_set(*grid, options);
     if (soup.triangles.empty())
@@ -108,6 +109,8 @@ TriangleSoup read_level_set(const std::filesystem::path& path, const io::LevelSe
     throw InputError(name, std::string("not a readable OpenVDB level set: ") + e.what());
   } catch (const std::bad_alloc&) {
     throw InputError(name, "corrupt OpenVDB file: it claims more data than can be allocated");
+  } catch (const std::ios_base::failure&) {
+    throw InputError(name, "truncated OpenVDB file: it ends before the data it announces");
   } catch (const std::exception& e) {
     throw InputError(name, std::string("not a readable OpenVDB file: ") + e.what());
   }

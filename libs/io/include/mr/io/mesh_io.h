@@ -22,6 +22,17 @@ TriangleSoup read_surface(const Registry& registry, const std::filesystem::path&
 TetMesh read_volume(const Registry& registry, const std::filesystem::path& path,
                     const ReadOptions& options = {});
 
+/// read_surface and read_volume for a file's bytes already in memory (an
+/// upload, an archive member, a fuzzer's input). The format is
+/// options.format, else the one for the extension of `name`, which messages
+/// use as the file's name. Throws UsageError if that format has no reader
+/// of bytes, and otherwise exactly what reading the same bytes from a file
+/// named `name` throws.
+TriangleSoup read_surface_bytes(const Registry& registry, std::string_view bytes, const std::string& name,
+                                const ReadOptions& options = {});
+TetMesh read_volume_bytes(const Registry& registry, std::string_view bytes, const std::string& name,
+                          const ReadOptions& options = {});
+
 /// True if the format chosen for `path` (or options.format) holds a volume mesh.
 bool is_volume_format(const Registry& registry, const std::filesystem::path& path,
                       const std::string& explicit_format = {});

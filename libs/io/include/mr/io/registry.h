@@ -12,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace mr::io {
@@ -33,6 +34,15 @@ struct Format {
   std::function<TetMesh(const std::filesystem::path&, const ReadOptions&)> read_volume;
   std::function<void(const TetMesh&, const std::filesystem::path&, const WriteOptions&)> write_volume;
 
+  /// Readers of a file's bytes already in memory; `name` stands for the file
+  /// in error messages (and locates the files a format may refer to, such as
+  /// a glTF's external buffers). Registry::add derives read_surface and
+  /// read_volume from them when those are left empty.
+  std::function<TriangleSoup(std::string_view bytes, const std::string& name, const ReadOptions&)>
+      read_surface_bytes;
+  std::function<TetMesh(std::string_view bytes, const std::string& name, const ReadOptions&)>
+      read_volume_bytes;
+
   /// The grid this format stores surface positions on when written with
   /// `options`, for positions inside [lo, hi]. Empty: every double is stored
   /// exactly (the default).
@@ -45,6 +55,7 @@ struct Format {
 class Registry {
  public:
   /// Adds a format; throws std::logic_error if its name or an extension is taken.
+  /// A format with a bytes reader but no path reader gets one that reads the whole file.
   void add(Format format);
 
   /// The format named `name`, or nullptr.
