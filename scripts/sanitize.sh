@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The unit and in-process tool tests (mr_tests) under AddressSanitizer and
 # UndefinedBehaviorSanitizer, in build-asan/. Any report fails the run.
+# Then the sanitizer build's tools must write the same bytes as the Release
+# build's (build/, from scripts/test.sh), with 1 and 2 threads.
 # Extra arguments go to ctest (e.g. -R hole to run a subset).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -12,7 +14,9 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # falsely inside OpenMesh and libstdc++ (-Wmaybe-uninitialized), so they stay warnings here.
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMR_SANITIZE=address \
   -DMR_BUILD_BENCH=OFF -DMR_WITH_PYTHON=OFF -DMR_WERROR=OFF >/dev/null
-cmake --build build-asan --parallel "$(nproc)" --target mr_tests
+cmake --build build-asan --parallel "$(nproc)" --target mr_tests meshrepair tetrahedralize
 # Every test of mr_tests; the Python-driven tests (module, batch, Makefile, kills) run on the Release build.
 ctest --test-dir build-asan --parallel "$(nproc)" --output-on-failure \
   -E "^(bench_runner|python_module|meshrepair_batch|examples_makefile|fault_killed_runs)$" "$@"
+[ -x build/tools/meshrepair/meshrepair ] || { echo "sanitize: build/ has no Release tools; run scripts/test.sh first" >&2; exit 2; }
+tests/determinism/compare_builds.sh build build-asan

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Runs killed at random moments leave the previous output or none, never a partial file.
+"""Runs killed at random moments, or out of room for their output, leave the previous output
+or none, never a partial file.
 
 Each tool run is first done in full (its bytes are the reference: the tools are
 deterministic), then started again and again and stopped by SIGKILL, SIGTERM or
@@ -7,10 +8,13 @@ SIGINT after a random delay up to the full run's time. After every stop the outp
 folder must hold exactly the previous output (or nothing, if there was none) or the
 complete new one, and no other file; SIGTERM and SIGINT must end the run within a
 second. MR_FAULT_KILLS (default 100) sets the number of stops, MR_FAULT_SEED the seed.
+A full disk is played by RLIMIT_FSIZE: writing past it fails with EFBIG (SIGXFSZ ignored)
+or ends the process by SIGXFSZ (its default).
 """
 import os
 import pathlib
 import random
+import resource
 import signal
 import struct
 import subprocess
@@ -111,6 +115,29 @@ class KilledRuns(unittest.TestCase):
         out = pathlib.Path(self.folder.name) / "repair" / "torus.glb"
         command = [tool("meshrepair"), str(EXAMPLES / "torus_soup.ply"), str(out), "-j", "2"]
         self.run_kills(command, out, KILLS - KILLS // 2)
+
+    def test_output_larger_than_the_room_left(self):
+        folder = pathlib.Path(self.folder.name) / "full"
+        folder.mkdir(exist_ok=True)
+        out = folder / "sphere.obj"
+        command = [tool("format-convert"), str(self.inputs / "sphere.stl"), str(out)]
+        previous = b"the previous output\n"
+        for signal_kills in (False, True):
+            out.write_bytes(previous)
+
+            def limit_file_size(kill=signal_kills):
+                if not kill:
+                    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+                resource.setrlimit(resource.RLIMIT_FSIZE, (100_000, 100_000))
+
+            run = subprocess.run(command, preexec_fn=limit_file_size, capture_output=True, text=True)
+            if signal_kills:
+                self.assertEqual(run.returncode, -signal.SIGXFSZ, run.stderr)
+            else:
+                self.assertEqual(run.returncode, 1, run.stderr)
+                self.assertIn(str(out), run.stderr)
+            self.assertEqual(sorted(p.name for p in folder.iterdir()), [out.name])
+            self.assertEqual(out.read_bytes(), previous)
 
 
 if __name__ == "__main__":

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <string>
 #include <system_error>
 
 #include <fcntl.h>
@@ -52,6 +53,21 @@ class Descriptor {
   int descriptor_;
 };
 
+// Runs `write(path)`; a writer's error names `destination`, the file the user asked for, not `path`.
+void write_naming_destination(const std::filesystem::path& path, const std::filesystem::path& destination,
+                              const std::function<void(const std::filesystem::path&)>& write) {
+  try {
+    write(path);
+  } catch (const RunError& e) {
+    std::string message = e.what();
+    const std::string written = path.string();
+    for (std::size_t at = message.find(written); at != std::string::npos;
+         at = message.find(written, at + destination.string().size()))
+      message.replace(at, written.size(), destination.string());
+    throw RunError(message);
+  }
+}
+
 // Moves a complete file at `temp` over `destination` in one rename; removes `temp` if that fails.
 void move_into_place(const std::filesystem::path& temp, const std::filesystem::path& destination) {
   std::error_code ec;
@@ -69,7 +85,7 @@ void write_through_named_temporary(const std::filesystem::path& destination,
   const std::filesystem::path temp = temporary_sibling(destination);
   const UnfinishedFile listed(temp);
   try {
-    write(temp);
+    write_naming_destination(temp, destination, write);
     if (!std::filesystem::exists(temp))
       throw RunError("writing " + destination.string() + " produced no file");
   } catch (...) {
@@ -88,7 +104,7 @@ void write_atomically(const std::filesystem::path& destination,
   // name, a run killed at any moment, even by SIGKILL, leaves nothing behind.
   const Descriptor unnamed(::open(folder_of(destination).c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666));
   if (unnamed.get() < 0) return write_through_named_temporary(destination, write);
-  write(descriptor_path(unnamed.get()));
+  write_naming_destination(descriptor_path(unnamed.get()), destination, write);
   // Named only once complete, then moved over the destination in one rename.
   const std::filesystem::path temp = temporary_sibling(destination);
   const UnfinishedFile listed(temp);
