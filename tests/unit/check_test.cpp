@@ -115,7 +115,7 @@ TEST_CASE("tet checks: exact orientation and quality", "[check]") {
   CHECK(check::min_dihedral_angle_deg(a, b, c, d) == Approx(std::acos(1.0 / 3) * 180 / M_PI));
 }
 
-TEST_CASE("sampled distance between surfaces", "[check]") {
+TEST_CASE("sampled distance between surfaces", "[check][slow]") {
   const TriangleSoup cube = test::cube_soup();
   CHECK(check::one_sided_distance(cube, cube).max == Approx(0.0).margin(1e-12));
   const TriangleSoup bigger = test::cube_soup(-0.1, 1.1);

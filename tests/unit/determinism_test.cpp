@@ -19,7 +19,7 @@ std::string file_bytes(const std::filesystem::path& path) {
 
 }  // namespace
 
-TEST_CASE("every writer gives the same bytes for the same mesh", "[io][determinism]") {
+TEST_CASE("every writer gives the same bytes for the same mesh", "[io][determinism][slow]") {
   const io::Registry registry = io::make_default_registry();
   test::TempDir dir("determinism");
   TriangleSoup soup = test::cube_soup();

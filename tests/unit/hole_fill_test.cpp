@@ -230,7 +230,7 @@ TEST_CASE("hole-fill writes the filled surface, checked as written, and its stat
 }
 
 TEST_CASE("meshrepair fills the holes of an input that lacks nothing else and keeps every face",
-          "[hole_fill][e2e]") {
+          "[hole_fill][e2e][slow]") {
   const test::TempDir dir("meshrepair_holes_only");
   const io::Registry registry = io::make_default_registry();
   const TriangleSoup input =
@@ -260,6 +260,13 @@ TEST_CASE("meshrepair fills the holes of an input that lacks nothing else and ke
   const nlohmann::json remeshed = nlohmann::json::parse(std::ifstream(dir / "r.json"));
   REQUIRE(remeshed["path"] == "tetrahedralize");
   REQUIRE(remeshed["hole_fill_declined"] == "--remesh");
+  // Both paths report their peak memory, in all and per input face.
+  for (const nlohmann::json* figures : {&stats, &remeshed}) {
+    const double peak_mb = (*figures)["memory"]["peak_mb"];
+    CHECK(peak_mb > 1.0);
+    CHECK((*figures)["memory"]["bytes_per_input_face"] ==
+          Approx(peak_mb * 1048576.0 / input.triangles.size()));
+  }
 }
 
 TEST_CASE("a watertight result is written on a finer Draco grid when the chosen one leaves no room",

@@ -70,7 +70,7 @@ double open_boundary_distance(const TriangleSoup& surface, const TriangleSoup& i
 }  // namespace
 
 TEST_CASE("tetrahedralize: open boundaries stay near the input's boundary through improvement",
-          "[tetrahedralize][open-boundary]") {
+          "[tetrahedralize][open-boundary][slow]") {
   const TriangleSoup disk = flat_disk(64);
   tetmesh::PipelineOptions options;
   options.filter = false;  // a disk encloses nothing: look at every tracked face

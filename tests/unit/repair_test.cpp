@@ -107,7 +107,7 @@ TriangleSoup two_cubes(const Vec3d& offset) {
 
 }  // namespace
 
-TEST_CASE("a single cube of tets gives its 12 faces back", "[repair]") {
+TEST_CASE("a single cube of tets gives its 12 faces back", "[repair][slow]") {
   const TriangleSoup input = test::cube_soup();
   const repair::RepairResult result = repair_tets(test::cube_tets(), input);
   REQUIRE(result.manifold.nonmanifold_edges_found == 0);
@@ -120,7 +120,7 @@ TEST_CASE("a single cube of tets gives its 12 faces back", "[repair]") {
   REQUIRE(result.stages[2].name == "cleanup");
 }
 
-TEST_CASE("two cubes of tets sharing only an edge are pulled apart", "[repair]") {
+TEST_CASE("two cubes of tets sharing only an edge are pulled apart", "[repair][slow]") {
   const TetMesh tets = grid_tets({{0, 0, 0}, {1, 1, 0}});
   const TriangleSoup input = two_cubes({1, 1, 0});
   const check::SurfaceReport peeled = check::check_surface(extract_boundary(tets));
@@ -160,7 +160,7 @@ TEST_CASE("a pinch whose tets are connected elsewhere is resolved", "[repair]") 
   REQUIRE(r.volume == Approx(5.0).margin(0.5));
 }
 
-TEST_CASE("a pinch between two solid layers is cut out inside the envelope", "[repair]") {
+TEST_CASE("a pinch between two solid layers is cut out inside the envelope", "[repair][slow]") {
   // A 2x2x3 block whose middle layer lacks two diagonal cells, with no
   // rejected tets on offer: the middle vertical edge is non-manifold, and
   // tets must go. The cells are 240 epsilon wide: removing a fan of them
@@ -274,7 +274,7 @@ TEST_CASE("when its rounds run out, the manifold fix falls back to filling the s
   REQUIRE(fell_back > 0);
 }
 
-TEST_CASE("a pinch in a thin layer is closed by adding rejected tets", "[repair]") {
+TEST_CASE("a pinch in a thin layer is closed by adding rejected tets", "[repair][slow]") {
   // A 2x2x3 block whose thin middle layer lacks two diagonal cells: the
   // middle vertical edge is non-manifold, and both its ends have connected
   // stars, so no split helps. Removing the kept tets of one side would
@@ -314,7 +314,7 @@ TEST_CASE("a pinch in a thin layer is closed by adding rejected tets", "[repair]
   REQUIRE(out_to_in <= 2 * kThin);
 }
 
-TEST_CASE("the clean-up makes a dense peeled surface coarse inside the envelope", "[repair]") {
+TEST_CASE("the clean-up makes a dense peeled surface coarse inside the envelope", "[repair][slow]") {
   const TetMesh tets = fine_cube_tets(4);
   const TriangleSoup input = test::cube_soup();
   const repair::RepairResult dense = repair_tets(tets, input, false);
@@ -344,7 +344,8 @@ TEST_CASE("the repair refuses bad options and empty tet sets", "[repair]") {
 
 using test::sphere;
 
-TEST_CASE("simplify_in_envelope_of keeps the surface in the reference's envelope", "[repair][simplify]") {
+TEST_CASE("simplify_in_envelope_of keeps the surface in the reference's envelope",
+          "[repair][simplify][slow]") {
   const TriangleSoup surface = sphere(1.0, 5);
   simplify::SimplifyOptions options;
   options.epsilon_abs = 4e-3;
@@ -420,7 +421,7 @@ std::vector<Case> broken_cases() {
 
 }  // namespace
 
-TEST_CASE("meshrepair makes broken inputs watertight", "[repair][e2e]") {
+TEST_CASE("meshrepair makes broken inputs watertight", "[repair][e2e][slow]") {
   const io::Registry registry = io::make_default_registry();
   test::TempDir dir("meshrepair");
   for (const Case& c : broken_cases()) {
@@ -455,7 +456,7 @@ TEST_CASE("meshrepair makes broken inputs watertight", "[repair][e2e]") {
   }
 }
 
-TEST_CASE("meshrepair simplifies its input first unless told not to", "[repair][e2e]") {
+TEST_CASE("meshrepair simplifies its input first unless told not to", "[repair][e2e][slow]") {
   const io::Registry registry = io::make_default_registry();
   test::TempDir dir("meshrepair_simplify");
   // A flat square plate, densely tessellated on its large faces.
@@ -588,19 +589,19 @@ void require_watertight_glb(const TriangleSoup& input, const std::string& name) 
 
 }  // namespace
 
-TEST_CASE("meshrepair makes a soup of a sphere watertight in GLB", "[repair][e2e]") {
+TEST_CASE("meshrepair makes a soup of a sphere watertight in GLB", "[repair][e2e][slow]") {
   require_watertight_glb(as_soup(sphere(1.0, 3), 7, false), "soup");
 }
 
 TEST_CASE("meshrepair makes a soup with duplicated and flipped triangles watertight in GLB",
-          "[repair][e2e]") {
+          "[repair][e2e][slow]") {
   for (unsigned seed : {8u, 9u, 10u}) {
     CAPTURE(seed);
     require_watertight_glb(as_soup(sphere(1.0, 3), seed, true), "soup_dup_flip");
   }
 }
 
-TEST_CASE("meshrepair makes a jittered sphere watertight in GLB", "[repair][e2e]") {
+TEST_CASE("meshrepair makes a jittered sphere watertight in GLB", "[repair][e2e][slow]") {
   const TriangleSoup s = sphere(1.0, 4);
   require_watertight_glb(jittered(s, 0.5e-3 * bounding_box_diagonal(s), 9), "jitter");
 }

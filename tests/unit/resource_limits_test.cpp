@@ -31,7 +31,7 @@ void expect_refused(test::ToolMain tool, const std::filesystem::path& in, const 
 
 }  // namespace
 
-TEST_CASE("an input too large for --max-memory is refused before the run", "[limits]") {
+TEST_CASE("an input too large for --max-memory is refused before the run", "[limits][slow]") {
   test::TempDir dir("max_memory");
   const io::Registry registry = io::make_default_registry();
   // 8 * 4^5 = 8,192 faces: 400 KB as binary STL, and about 6 MB at 768 bytes per face.

@@ -200,7 +200,7 @@ TEST_CASE("writers store positions exactly on the grid they announce", "[grid][i
 }
 
 TEST_CASE("meshrepair's STL, GLB and Draco outputs stay watertight where float32 would merge two parts",
-          "[grid][repair][e2e]") {
+          "[grid][repair][e2e][slow]") {
   // Two cubes far from the origin, 0.01 epsilon apart: less than half a float32
   // step there, so a surface written as float32 without care merges them.
   const io::Registry registry = io::make_default_registry();

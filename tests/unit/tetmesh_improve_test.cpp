@@ -215,7 +215,7 @@ TEST_CASE("improve: lowers the energy, keeps the mesh valid and the surface in p
   CHECK(surface.area == Approx(6.0).margin(4 * 12 * fixture.envelope->epsilon()));
 }
 
-TEST_CASE("improve: splits long edges and collapses short ones towards the target", "[improve]") {
+TEST_CASE("improve: splits long edges and collapses short ones towards the target", "[improve][slow]") {
   Fixture fine;
   ImproveOptions coarse = options_with_threads(1);
   coarse.target_edge_length = 0.6;  // grid edges (0.25 .. 0.43) are short for it

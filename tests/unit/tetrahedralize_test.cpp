@@ -115,7 +115,8 @@ std::string file_bytes(const std::filesystem::path& path) {
 
 }  // namespace
 
-TEST_CASE("tetrahedralize: broken inputs give valid meshes of the expected volume", "[tetrahedralize]") {
+TEST_CASE("tetrahedralize: broken inputs give valid meshes of the expected volume",
+          "[tetrahedralize][slow]") {
   for (const Case& c : broken_inputs()) {
     SECTION(c.name) {
       tetmesh::PipelineOptions options;
@@ -156,7 +157,7 @@ std::int64_t stage_count(const tetmesh::PipelineStats& stats, const std::string&
 }
 
 TEST_CASE("tetrahedralize: the surface is snapped to a grid below epsilon before insertion",
-          "[tetrahedralize]") {
+          "[tetrahedralize][slow]") {
   tetmesh::PipelineOptions options;
   options.improve = false;
   const TriangleSoup input = cube_with_sliver(1e-9);
@@ -199,7 +200,7 @@ TriangleSoup book_of_triangles(int pages) {
 }
 
 TEST_CASE("tetrahedralize: stuck cut points are retried on a coarser grid before any triangle is left out",
-          "[tetrahedralize]") {
+          "[tetrahedralize][slow]") {
   // With 4 pages, some cut points on the default grid (2^-20) cannot be
   // rounded; on the grid 16 times coarser every page is embedded.
   tetmesh::PipelineOptions options;
@@ -214,7 +215,7 @@ TEST_CASE("tetrahedralize: stuck cut points are retried on a coarser grid before
   CHECK(check::one_sided_distance(result.tracked_surface, book).max <= result.parameters.epsilon);
 }
 
-TEST_CASE("tetrahedralize: the full pipeline with improvement keeps the cube", "[tetrahedralize]") {
+TEST_CASE("tetrahedralize: the full pipeline with improvement keeps the cube", "[tetrahedralize][slow]") {
   const TriangleSoup cube = test::cube_soup();
   const tetmesh::PipelineResult result = tetmesh::tetrahedralize(cube, {});
   const check::TetReport report = check::check_tets(result.mesh);
@@ -225,7 +226,8 @@ TEST_CASE("tetrahedralize: the full pipeline with improvement keeps the cube", "
   CHECK(check::one_sided_distance(result.tracked_surface, cube).max <= result.parameters.epsilon);
 }
 
-TEST_CASE("tetrahedralize: improvement clears slivers along lines where parts cross", "[tetrahedralize]") {
+TEST_CASE("tetrahedralize: improvement clears slivers along lines where parts cross",
+          "[tetrahedralize][slow]") {
   // Two cubes crossing at a slant: their faces meet along lines that are not
   // on any lattice plane, so the cut points there are close together. The
   // collapses must slide along those lines rather than leave the slivers.
@@ -262,7 +264,7 @@ TEST_CASE("tetrahedralize: --no-filter labels the regions the input separates", 
 }
 
 TEST_CASE("tetrahedralize tool: writes a valid mesh, stats and the tracked surface, deterministically",
-          "[tetrahedralize][tool]") {
+          "[tetrahedralize][tool][slow]") {
   test::TempDir dir("tetrahedralize");
   const io::Registry registry = io::make_default_registry();
   const auto input = dir.path() / "overlap.obj";

@@ -59,7 +59,7 @@ TEST_CASE("thicken_sheets: a triangle becomes a closed outward prism within the 
 }
 
 TEST_CASE("tetrahedralize: an input enclosing no volume gives its sheets thickened, not nothing",
-          "[thicken][tetrahedralize]") {
+          "[thicken][tetrahedralize][slow]") {
   const TriangleSoup sheets = crossing_doubled_sheets();
   tetmesh::PipelineOptions options;
   options.improve = false;

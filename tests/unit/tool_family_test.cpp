@@ -121,7 +121,7 @@ TEST_CASE("an input whose triangles are all degenerate is still geometry", "[too
   CHECK(io::read_surface(io::make_default_registry(), dir / "flat.ply").triangles.size() == 2);
 }
 
-TEST_CASE("every tool takes -q, -v, -j and --stats", "[tools][cli]") {
+TEST_CASE("every tool takes -q, -v, -j and --stats", "[tools][cli][slow]") {
   test::TempDir dir("option_vocabulary");
   const io::Registry registry = io::make_default_registry();
   io::write_surface(registry, test::cube_soup(), dir / "cube.obj");

@@ -2,6 +2,7 @@
 
 #include <mr/check/distance.h>
 #include <mr/check/surface_check.h>
+#include <mr/cli/run_tool.h>
 #include <mr/core/errors.h>
 
 #include <algorithm>
@@ -101,11 +102,20 @@ nlohmann::json stage_seconds(const RepairRun& run) {
   return stages;
 }
 
+// Peak memory of the run so far, and per input face (bench/README.md, "Large inputs").
+nlohmann::json memory_figures(const TriangleSoup& input) {
+  const double peak_mb = cli::peak_memory_mb();
+  return {
+      {"peak_mb", peak_mb},
+      {"bytes_per_input_face", input.triangles.empty() ? 0.0 : peak_mb * 1048576.0 / input.triangles.size()}};
+}
+
 }  // namespace
 
 nlohmann::json make_repair_stats(const RepairRun& run) {
   const auto start = std::chrono::steady_clock::now();
   nlohmann::json stats = {
+      {"memory", memory_figures(run.input)},
       {"path", "tetrahedralize"},
       {"hole_fill_declined", run.hole_fill_declined},
       {"input", input_defects(run.input)},
@@ -127,6 +137,7 @@ nlohmann::json make_holes_only_stats(const HolesOnlyRun& run) {
   for (const hole_fill::HoleReport& h : run.fill.holes)
     patch_faces += h.patch_faces, patch_vertices += h.patch_vertices;
   nlohmann::json stats = {
+      {"memory", memory_figures(run.input)},
       {"path", "hole_fill"},
       {"input", input_defects(run.input)},
       {"epsilon_abs", run.epsilon},

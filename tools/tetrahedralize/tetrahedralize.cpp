@@ -12,8 +12,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <sys/resource.h>
-
 #include <ostream>
 
 namespace mr::tools {
@@ -97,12 +95,6 @@ cli::ToolSpec make_spec(ToolOptions& o) {
   return spec;
 }
 
-double peak_memory_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
-}
-
 nlohmann::json make_stats(const TriangleSoup& input, const tetmesh::PipelineResult& result,
                           const check::TetReport& quality) {
   const check::DistanceReport distance = check::one_sided_distance(result.tracked_surface, input);
@@ -123,7 +115,7 @@ nlohmann::json make_stats(const TriangleSoup& input, const tetmesh::PipelineResu
                        {"tracked_surface_to_input_max", distance.max},
                        {"tracked_surface_to_input_mean", distance.mean},
                        {"samples", distance.samples}};
-  stats["peak_memory_mb"] = peak_memory_mb();
+  stats["peak_memory_mb"] = cli::peak_memory_mb();
   return stats;
 }
 

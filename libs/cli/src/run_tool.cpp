@@ -3,6 +3,8 @@
 
 #include <tbb/task_arena.h>
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <fstream>
 #include <new>
@@ -15,6 +17,12 @@ std::string version_string() { return MR_VERSION; }
 void run_with_threads(int threads, const std::function<void()>& body) {
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   arena.execute(body);
+}
+
+double peak_memory_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
 }
 
 std::vector<std::string> arguments(int argc, char** argv) {

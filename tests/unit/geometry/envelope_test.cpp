@@ -133,7 +133,7 @@ TEST_CASE("envelope: a triangle with all corners inside but its middle outside",
   }
 }
 
-TEST_CASE("envelope: a large triangle over a finely tessellated plane", "[envelope]") {
+TEST_CASE("envelope: a large triangle over a finely tessellated plane", "[envelope][slow]") {
   // 200 x 200 cells of the unit square, each two triangles, and a copy with
   // a 0.1 x 0.1 hole: a triangle spanning the square is inside the first,
   // and not the second, though its corners are near the plane in both.
@@ -232,7 +232,7 @@ TEST_CASE("envelope: staged refinement widens the conservative envelope", "[enve
 // Random soup: small triangles near a bumpy sphere. Random query triangles
 // around it: whenever the envelope says inside, a lattice 20 times finer
 // than the sampling step must find every point within epsilon.
-TEST_CASE("envelope: never inside when some point is farther than epsilon", "[envelope]") {
+TEST_CASE("envelope: never inside when some point is farther than epsilon", "[envelope][slow]") {
   std::mt19937_64 rng(2024);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   const auto random_vector = [&] { return Vec3d(unit(rng), unit(rng), unit(rng)); };

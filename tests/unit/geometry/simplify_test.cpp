@@ -186,7 +186,8 @@ int count_faces_at(const TriangleSoup& soup, const std::array<Vec3d, 3>& corners
 
 }  // namespace
 
-TEST_CASE("a finely tessellated plane collapses to a few triangles with its boundary kept", "[simplify]") {
+TEST_CASE("a finely tessellated plane collapses to a few triangles with its boundary kept",
+          "[simplify][slow]") {
   const TriangleSoup input = full_grid(100);
   const auto result = simplify_in_envelope(input, {});
   INFO("faces after: " << result.faces_after);
@@ -213,7 +214,7 @@ TEST_CASE("a finely tessellated plane collapses to a few triangles with its boun
   CHECK(area == Approx(1.0).epsilon(1e-12));
 }
 
-TEST_CASE("a sphere is reduced substantially within its distance bound", "[simplify]") {
+TEST_CASE("a sphere is reduced substantially within its distance bound", "[simplify][slow]") {
   const TriangleSoup input = icosphere(5);
   REQUIRE(input.triangles.size() == 20480);
   const auto result = simplify_in_envelope(input, {});
@@ -230,7 +231,7 @@ TEST_CASE("a sphere is reduced substantially within its distance bound", "[simpl
 // A disc far thinner than epsilon: every collapse towards its middle keeps
 // the faces inside the envelope, so only the removed vertices that the faces
 // carry keep its rim from shrinking in.
-TEST_CASE("a part thinner than epsilon does not erode", "[simplify]") {
+TEST_CASE("a part thinner than epsilon does not erode", "[simplify][slow]") {
   TriangleSoup input = icosphere(4);
   for (Vec3d& p : input.positions) p.z() *= 1e-4;
   const auto result = simplify_in_envelope(input, {});
@@ -243,7 +244,7 @@ TEST_CASE("a part thinner than epsilon does not erode", "[simplify]") {
   CHECK(hi.y() - lo.y() >= 2.0 - 2.0 * result.epsilon);
 }
 
-TEST_CASE("thin closed parts are never turned inside out", "[simplify]") {
+TEST_CASE("thin closed parts are never turned inside out", "[simplify][slow]") {
   // Flat and needle-like parts thinner than epsilon: each collapse may turn
   // faces only a little and create no crossing, yet a sequence of them could
   // end in a closed part of negative volume (seen on a strut in meshrepair's
@@ -281,7 +282,7 @@ TEST_CASE("a needle thinner than epsilon keeps positive volume", "[simplify]") {
   CHECK(mr::check::one_sided_distance(result.soup, input).max <= result.epsilon);
 }
 
-TEST_CASE("simplification stops at the target face count", "[simplify]") {
+TEST_CASE("simplification stops at the target face count", "[simplify][slow]") {
   SimplifyOptions options;
   options.target_faces = 5000;
   options.flip_passes = 0;
@@ -330,7 +331,7 @@ TEST_CASE("non-manifold faces pass through and stay attached", "[simplify]") {
   CHECK(mr::check::one_sided_distance(result.soup, input).max <= result.epsilon);
 }
 
-TEST_CASE("a non-manifold soup goes through without a word from OpenMesh", "[simplify]") {
+TEST_CASE("a non-manifold soup goes through without a word from OpenMesh", "[simplify][slow]") {
   // Two spheres touching at one vertex p (the second is the first mirrored
   // through p). Face order: the first sphere without one face at p, then the
   // second, then that face. Closing either fan at p while the other one is
@@ -376,7 +377,7 @@ TEST_CASE("a non-manifold soup goes through without a word from OpenMesh", "[sim
   CHECK(mr::check::one_sided_distance(input, result.soup).max <= result.epsilon);
 }
 
-TEST_CASE("a double-sided surface is simplified as one sheet and stays double-sided", "[simplify]") {
+TEST_CASE("a double-sided surface is simplified as one sheet and stays double-sided", "[simplify][slow]") {
   // Every face followed by its reversed copy, as exporters write two-sided
   // geometry. Each edge has four faces; merged per triangle, it is a sphere.
   const TriangleSoup sphere = icosphere(4);
@@ -403,7 +404,7 @@ TEST_CASE("a double-sided surface is simplified as one sheet and stays double-si
   CHECK(mr::check::one_sided_distance(input, result.soup).max <= result.epsilon);
 }
 
-TEST_CASE("duplicate and degenerate faces are kept and the surface stays closed", "[simplify]") {
+TEST_CASE("duplicate and degenerate faces are kept and the surface stays closed", "[simplify][slow]") {
   TriangleSoup input = icosphere(3);
   // A sliver: face (a, b, c) split at the midpoint m of a-b, and (a, b, m)
   // closing the gap, so edge a-b has a face of (almost) zero area on one side.
@@ -447,7 +448,7 @@ TEST_CASE("duplicate and degenerate faces are kept and the surface stays closed"
   CHECK(mr::check::one_sided_distance(input, result.soup).max <= result.epsilon);
 }
 
-TEST_CASE("simplification adds no self-intersection", "[simplify]") {
+TEST_CASE("simplification adds no self-intersection", "[simplify][slow]") {
   // Two grids crossing each other at right angles: the input intersects itself.
   TriangleSoup input = full_grid(12);
   TriangleSoup crossing = full_grid(12);
@@ -488,7 +489,7 @@ TEST_CASE("faces along an existing crossing are simplified too", "[simplify]") {
   CHECK(mr::check::one_sided_distance(input, result.soup).max <= result.epsilon);
 }
 
-TEST_CASE("simplification is deterministic whatever the thread count", "[simplify]") {
+TEST_CASE("simplification is deterministic whatever the thread count", "[simplify][slow]") {
   TriangleSoup input = icosphere(4);
   for (Vec3d& p : input.positions) p *= 1.0 + 0.05 * std::sin(7 * p.x()) * std::cos(5 * p.y());
   SimplifyOptions one_thread;
@@ -526,7 +527,7 @@ mr::test::ToolRun run_simplify(const std::vector<std::string>& args) {
 
 }  // namespace
 
-TEST_CASE("simplify-in-envelope runs end to end", "[simplify]") {
+TEST_CASE("simplify-in-envelope runs end to end", "[simplify][slow]") {
   mr::test::TempDir dir("simplify_tool");
   const auto registry = mr::io::make_default_registry();
   const TriangleSoup input = icosphere(4);
@@ -630,7 +631,7 @@ TriangleSoup with_flipped_patches(TriangleSoup soup, int patches, std::size_t pa
 }  // namespace
 
 TEST_CASE("a closed vessel with flipped patches simplifies like its consistently oriented twin",
-          "[simplify]") {
+          "[simplify][slow]") {
   const TriangleSoup twin = closed_vessel(96, 34);
   const TriangleSoup flipped = with_flipped_patches(twin, 8, 300);
   REQUIRE(twin.triangles.size() == 6720);

@@ -169,7 +169,7 @@ TEST_CASE("insertion: degenerate triangles are skipped, the rest embedded", "[te
   CHECK(find_mesh_inconsistency(inserted.background.mesh) == "");
 }
 
-TEST_CASE("insertion: random intersecting soups are embedded exactly", "[tetmesh][insertion]") {
+TEST_CASE("insertion: random intersecting soups are embedded exactly", "[tetmesh][insertion][slow]") {
   for (unsigned seed : {1u, 2u, 3u}) {
     const TriangleSoup soup = random_soup(seed, 25);
     INFO("seed " << seed);
@@ -179,7 +179,7 @@ TEST_CASE("insertion: random intersecting soups are embedded exactly", "[tetmesh
 }
 
 TEST_CASE("insertion: cut points that grow too long are rounded at once, the embedding still exact",
-          "[tetmesh][insertion]") {
+          "[tetmesh][insertion][slow]") {
   // Many triangles through one region: cuts of cuts of cuts, whose exact
   // coordinates grow past a bound set low enough for a small soup.
   const TriangleSoup soup = random_soup(7, 30);

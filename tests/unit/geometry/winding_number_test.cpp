@@ -104,7 +104,7 @@ TEST_CASE("an open cube gives fractional winding numbers inside", "[winding]") {
   CHECK(winding_number_exact(cube, Vec3d(0.5, 0.5, 0.99)) > 0.5);
 }
 
-TEST_CASE("fast winding numbers match the exact sum on a 20k-triangle sphere", "[winding]") {
+TEST_CASE("fast winding numbers match the exact sum on a 20k-triangle sphere", "[winding][slow]") {
   const TriangleSoup sphere = uv_sphere(160, 64);
   REQUIRE(sphere.num_triangles() >= 20000);
   const WindingNumberTree tree(sphere);

@@ -88,7 +88,7 @@ TEST_CASE("an open cube still gives a closed surface, signed by the winding numb
   CHECK(max_distance_to_box(back, 0.0, 1.0) < 2.0 * voxel);
 }
 
-TEST_CASE("an inconsistent, self-intersecting soup gives the union of its solids", "[vdb]") {
+TEST_CASE("an inconsistent, self-intersecting soup gives the union of its solids", "[vdb][slow]") {
   test::TempDir dir("vdb_union");
   TriangleSoup soup = test::cube_soup(0, 1);
   soup.append(test::cube_soup(0.5, 1.5));
@@ -189,7 +189,7 @@ TEST_CASE("a .vdb without a float grid is an input error", "[vdb]") {
 
 namespace mr {
 
-TEST_CASE("writing a level set is deterministic, whatever the thread count", "[vdb]") {
+TEST_CASE("writing a level set is deterministic, whatever the thread count", "[vdb][slow]") {
   test::TempDir dir("vdb_determinism");
   const io::Registry registry = io::make_default_registry();
   TriangleSoup open = test::cube_soup();

@@ -22,6 +22,9 @@ int run_tool(const ToolSpec& spec, const std::vector<std::string>& args, std::os
 /// library calls have no thread option of their own.
 void run_with_threads(int threads, const std::function<void()>& body);
 
+/// The process's peak resident memory so far, in MB (for --stats).
+double peak_memory_mb();
+
 /// argv to a vector, without argv[0].
 std::vector<std::string> arguments(int argc, char** argv);
 
