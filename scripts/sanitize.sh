@@ -7,6 +7,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
+# This build has debug info (-g), for which ccache would key on the folder; a fresh clone elsewhere
+# should still hit the cache (its objects then name another folder in their debug info).
+export CCACHE_NOHASHDIR=1
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # OpenVDB leaks the nodes of a grid whose reading throws (upstream; see the file).
