@@ -20,10 +20,10 @@ import time
 import subprocess
 from dataclasses import dataclass
 
-# One reading of GNU time's report, shared with meshrepair-batch (its runner imports only the
+# One reading of GNU time's report and one way to kill, shared with meshrepair-batch (its runner imports only the
 # standard library).
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "tools" / "meshrepair-batch"))
-from meshrepair_batch.runner import TIME_FORMAT, read_gnu_time  # noqa: E402
+from meshrepair_batch.runner import TIME_FORMAT, kill_group, kill_pid, read_gnu_time  # noqa: E402
 
 GNU_TIME = "/usr/bin/time" if os.access("/usr/bin/time", os.X_OK) else None
 GRACE_S = 5.0  # after killing the tool on timeout, time for GNU time to report and exit
@@ -81,21 +81,6 @@ def _group_members(pgid, except_pid):
     return members
 
 
-def _kill(pids):
-    for pid in pids:
-        try:
-            os.kill(pid, signal.SIGKILL)
-        except (ProcessLookupError, PermissionError):
-            pass
-
-
-def _kill_group(pgid):
-    try:
-        os.killpg(pgid, signal.SIGKILL)
-    except (ProcessLookupError, PermissionError):
-        pass
-
-
 def _wait(pid, deadline, stop):
     """(pid, status, rusage) once the child exits, or None at the deadline or on stop."""
     pause = 0.002
@@ -130,14 +115,15 @@ def run_limited(command, cwd, limits, log_base, stop=None, env=None):
         wall = time.monotonic() - start
         if result is None:
             # Kill the tool first so that GNU time still reports its usage, then everything.
-            _kill(_group_members(proc.pid, proc.pid) if GNU_TIME else [proc.pid])
+            for pid in _group_members(proc.pid, proc.pid) if GNU_TIME else [proc.pid]:
+                kill_pid(pid)
             result = _wait(proc.pid, time.monotonic() + GRACE_S, threading.Event())
             if result is None:
-                _kill_group(proc.pid)
+                kill_group(proc.pid)
                 result = os.wait4(proc.pid, 0)
         _, status, usage = result
         proc.returncode = status  # reaped here: keep Popen from waiting again
-        _kill_group(proc.pid)  # stragglers the tool left behind
+        kill_group(proc.pid)  # stragglers the tool left behind
     if stop.is_set():
         raise Interrupted()
     sig = os.WTERMSIG(status) if os.WIFSIGNALED(status) else None

@@ -36,47 +36,34 @@ T PlyBinarySource::raw(const char* what) {
   return swap_ ? byte_swapped(value) : value;
 }
 
-double PlyBinarySource::number(PlyType type) {
+template <class Result>
+Result PlyBinarySource::read_as(PlyType type) {
   constexpr const char* what = "a PLY property value (the body is truncated)";
   switch (type) {
     case PlyType::int8:
-      return raw<std::int8_t>(what);
+      return static_cast<Result>(raw<std::int8_t>(what));
     case PlyType::uint8:
-      return raw<std::uint8_t>(what);
+      return static_cast<Result>(raw<std::uint8_t>(what));
     case PlyType::int16:
-      return raw<std::int16_t>(what);
+      return static_cast<Result>(raw<std::int16_t>(what));
     case PlyType::uint16:
-      return raw<std::uint16_t>(what);
+      return static_cast<Result>(raw<std::uint16_t>(what));
     case PlyType::int32:
-      return raw<std::int32_t>(what);
+      return static_cast<Result>(raw<std::int32_t>(what));
     case PlyType::uint32:
-      return raw<std::uint32_t>(what);
+      return static_cast<Result>(raw<std::uint32_t>(what));
     case PlyType::float32:
-      return raw<float>(what);
+      return static_cast<Result>(raw<float>(what));
     case PlyType::float64:
-      return raw<double>(what);
+      return static_cast<Result>(raw<double>(what));
   }
-  return 0;
+  return Result{};
 }
 
+double PlyBinarySource::number(PlyType type) { return read_as<double>(type); }
+
 std::int64_t PlyBinarySource::integer(PlyType type) {
-  constexpr const char* what = "a PLY property value (the body is truncated)";
-  switch (type) {
-    case PlyType::int8:
-      return raw<std::int8_t>(what);
-    case PlyType::uint8:
-      return raw<std::uint8_t>(what);
-    case PlyType::int16:
-      return raw<std::int16_t>(what);
-    case PlyType::uint16:
-      return raw<std::uint16_t>(what);
-    case PlyType::int32:
-      return raw<std::int32_t>(what);
-    case PlyType::uint32:
-      return raw<std::uint32_t>(what);
-    default:
-      break;
-  }
+  if (type != PlyType::float32 && type != PlyType::float64) return read_as<std::int64_t>(type);
   const double value = number(type);
   if (!(std::abs(value) < 9e15) || value != std::floor(value))
     fail("expected an integer, found " + std::to_string(value));

@@ -29,6 +29,9 @@ class PlyBinarySource {
  private:
   template <class T>
   T raw(const char* what);
+  /// Reads one value stored as `type` and returns it converted to `Result`.
+  template <class Result>
+  Result read_as(PlyType type);
 
   io::ByteReader reader_;
   bool swap_;

@@ -105,7 +105,7 @@ def run_limited(command, time_limit_s, memory_mb, stdout_path, stderr_path):
         if timer:
             timer.cancel()
         proc.returncode = status  # reaped here: keep Popen from waiting again
-        _kill_group(proc.pid)  # stragglers the tool left behind
+        kill_group(proc.pid)  # stragglers the tool left behind
     sig = os.WTERMSIG(status) if os.WIFSIGNALED(status) else None
     code = os.WEXITSTATUS(status) if os.WIFEXITED(status) else None
     peak = None if GNU_TIME in argv else usage.ru_maxrss / 1024.0  # see the module docstring
@@ -140,11 +140,11 @@ def _on_timeout(pid, flag):
     flag.set()
     leaves = [p for p in _descendants(pid) if not _children(p)]
     for leaf in leaves:
-        _kill(leaf)
+        kill_pid(leaf)
     deadline = time.monotonic() + (GRACE_S if leaves else 0.0)
     while time.monotonic() < deadline and _alive(pid):
         time.sleep(0.05)
-    _kill_group(pid)
+    kill_group(pid)
 
 
 def _descendants(pid):
@@ -174,14 +174,16 @@ def _alive(pid):
         return False
 
 
-def _kill(pid):
+def kill_pid(pid):
+    """SIGKILL to one process, if it still exists (shared with bench/corpus/execute.py)."""
     try:
         os.kill(pid, signal.SIGKILL)
     except (ProcessLookupError, PermissionError):
         pass
 
 
-def _kill_group(pgid):
+def kill_group(pgid):
+    """SIGKILL to a process group, if it still exists (shared with bench/corpus/execute.py)."""
     try:
         os.killpg(pgid, signal.SIGKILL)
     except (ProcessLookupError, PermissionError):
