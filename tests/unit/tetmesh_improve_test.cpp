@@ -366,3 +366,55 @@ TEST_CASE("improve: round_vertices rounds in place when that is safe", "[improve
   CHECK(find_mesh_inconsistency(mesh) == "");
   CHECK(all_tets_positive_on_doubles(mesh));
 }
+
+namespace {
+
+// The n needles around the edge from (0, 0, -3) to (0, 0, 3), their far
+// corners on the unit circle; every vertex locked, so only swaps can act.
+Mesh needles_around_an_edge(int n) {
+  Mesh mesh;
+  const Index a = mesh.add_vertex(HybridPoint(Vec3d(0, 0, -3)), kLocked);
+  const Index b = mesh.add_vertex(HybridPoint(Vec3d(0, 0, 3)), kLocked);
+  std::vector<Index> ring;
+  for (int i = 0; i < n; ++i) {
+    const double angle = 2 * M_PI * i / n;
+    ring.push_back(mesh.add_vertex(HybridPoint(Vec3d(std::cos(angle), std::sin(angle), 0)), kLocked));
+  }
+  for (int i = 0; i < n; ++i) {
+    const Index x = ring[i], y = ring[(i + 1) % n];
+    const Vec3d &pa = mesh.position(a).approx, &pb = mesh.position(b).approx, &px = mesh.position(x).approx,
+                &py = mesh.position(y).approx;
+    const bool positive = (pb - pa).cross(px - pa).dot(py - pa) > 0;
+    mesh.add_tet(positive ? Tet{a, b, x, y} : Tet{a, b, y, x});
+  }
+  mesh.rebuild_adjacency();
+  return mesh;
+}
+
+bool has_edge(const Mesh& mesh, Index a, Index b) {
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (mesh.tet_alive(t) && mesh.corner_of(t, a) >= 0 && mesh.corner_of(t, b) >= 0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("improve: an edge in five or six needles is removed", "[improve]") {
+  // No 3-2 or 4-4 swap applies, and the 2-3 swaps raise the largest energy:
+  // only removing the edge whole (2n - 4 tets on a triangulation of the
+  // ring) improves these.
+  const int n = GENERATE(5, 6);
+  Mesh mesh = needles_around_an_edge(n);
+  REQUIRE(find_mesh_inconsistency(mesh).empty());
+  const double before = measure_quality(mesh).max_amips;
+  ImproveOptions options = options_with_threads(1);
+  options.target_edge_length = 100;  // nothing to split
+  options.stop_energy = 3.5;
+  options.max_passes = 4;
+  const ImproveStats stats = improve_mesh(mesh, *unit_cube_envelope(), options);
+  CHECK(find_mesh_inconsistency(mesh).empty());
+  CHECK(stats.edge_removals >= 1);
+  CHECK_FALSE(has_edge(mesh, 0, 1));
+  CHECK(stats.after.max_amips < 0.8 * before);
+}

@@ -51,6 +51,35 @@ struct Case {
 };
 
 // The cube with a needle triangle inside, `height` thick.
+// A closed, finely tessellated wavy sphere (a UV grid of `around` x `down`
+// cells): the simplifier merges its small triangles into large ones that
+// use most of their room in the envelope, as on scans.
+TriangleSoup wavy_sphere(int around, int down) {
+  TriangleSoup soup;
+  const auto at = [](double theta, double phi) {
+    const double r = 1 + 0.15 * std::sin(3 * phi) * std::sin(2 * theta) + 0.1 * std::cos(5 * theta);
+    return Vec3d(r * std::sin(theta) * std::cos(phi), r * std::sin(theta) * std::sin(phi),
+                 r * std::cos(theta));
+  };
+  soup.positions.push_back(at(0, 0));
+  for (int j = 1; j < down; ++j) {
+    for (int i = 0; i < around; ++i) soup.positions.push_back(at(M_PI * j / down, 2 * M_PI * i / around));
+  }
+  const Index south = Index(soup.positions.size());
+  soup.positions.push_back(at(M_PI, 0));
+  const auto ring = [&](int j, int i) { return Index(1 + (j - 1) * around + (i % around)); };
+  for (int i = 0; i < around; ++i) soup.triangles.push_back({0, ring(1, i), ring(1, i + 1)});
+  for (int j = 1; j + 1 < down; ++j) {
+    for (int i = 0; i < around; ++i) {
+      soup.triangles.push_back({ring(j, i), ring(j + 1, i), ring(j, i + 1)});
+      soup.triangles.push_back({ring(j, i + 1), ring(j + 1, i), ring(j + 1, i + 1)});
+    }
+  }
+  for (int i = 0; i < around; ++i)
+    soup.triangles.push_back({south, ring(down - 1, i + 1), ring(down - 1, i)});
+  return soup;
+}
+
 TriangleSoup cube_with_sliver(double height) {
   TriangleSoup soup = test::cube_soup();
   const Index base = static_cast<Index>(soup.positions.size());
@@ -242,6 +271,24 @@ TEST_CASE("tetrahedralize: improvement clears slivers along lines where parts cr
   CHECK(report.min_dihedral_deg > 5.0);
   CHECK(report.max_amips < 20.0);
   CHECK(check::one_sided_distance(result.tracked_surface, soup).max <= result.parameters.epsilon);
+}
+
+TEST_CASE("tetrahedralize: improvement reaches the stop energy where the simplifier used its room",
+          "[tetrahedralize][slow]") {
+  // The faces the simplifier makes lie up to 0.8 epsilon from the input;
+  // improvement must still be able to move and replace them (before it
+  // checked them at a sampling step of epsilon, which no such face passed:
+  // max AMIPS 63, min dihedral 2 degrees here).
+  const TriangleSoup blob = wavy_sphere(128, 64);
+  tetmesh::PipelineOptions options;
+  options.tetrahedralize.threads = 2;
+  const tetmesh::PipelineResult result = tetmesh::tetrahedralize(blob, options);
+  const check::TetReport report = check::check_tets(result.mesh);
+  CHECK(report.valid());
+  CHECK(report.boundary.watertight());
+  CHECK(report.max_amips <= options.tetrahedralize.stop_energy);
+  CHECK(report.min_dihedral_deg >= 5.0);
+  CHECK(check::one_sided_distance(result.tracked_surface, blob).max <= result.parameters.epsilon);
 }
 
 TEST_CASE("tetrahedralize: --no-filter labels the regions the input separates", "[tetrahedralize]") {

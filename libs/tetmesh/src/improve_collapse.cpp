@@ -156,15 +156,6 @@ bool open_edges_inside(const Workspace& ws, const std::vector<TrackedFace>& at_u
   return true;
 }
 
-bool new_edges_short_enough(const Workspace& ws, const Link& lu, const Link& lv, Index u, Index v) {
-  const Vec3d& pv = ws.mesh.position(v).approx;
-  for (const Index x : lu.vertices) {
-    if (x == v || std::binary_search(lv.vertices.begin(), lv.vertices.end(), x)) continue;
-    if ((ws.mesh.position(x).approx - pv).norm() > 4.0 / 3.0 * ws.target(u, x)) return false;
-  }
-  return true;
-}
-
 }  // namespace
 
 bool try_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal) {
@@ -198,7 +189,6 @@ bool try_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal) {
   const Link lu = vertex_link(mesh, star_u, u);
   const Link lv = vertex_link(mesh, star_v, v);
   if (!tet_link_condition(lu, lv, edge_link(mesh, uv_tets, u, v))) return false;
-  if (goal == CollapseGoal::quality && !new_edges_short_enough(ws, lu, lv, u, v)) return false;
   if (!all_positive(mesh, new_tets)) return false;
 
   const std::vector<TrackedFace> at_u = tracked_faces_at(mesh, star_u, u);

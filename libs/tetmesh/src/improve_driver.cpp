@@ -35,9 +35,26 @@ struct QualityTally {
   }
 };
 
-double max_tet_energy(const Mesh& mesh) {
+// The largest and mean energy, and how many tets are at or above the stop energy.
+struct EnergyState {
+  double max = 0, mean = 0;
+  std::size_t bad = 0;
+};
+
+EnergyState energy_state(const Mesh& mesh, double stop_energy) {
+  EnergyState out;
+  double sum = 0;
+  std::size_t tets = 0;
   const std::vector<double> energy = tet_energies(mesh);
-  return energy.empty() ? 0.0 : *std::max_element(energy.begin(), energy.end());
+  for (Index t = 0; t < energy.size(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    out.max = std::max(out.max, energy[t]);
+    out.bad += energy[t] >= stop_energy;
+    sum += energy[t];
+    ++tets;
+  }
+  out.mean = tets ? sum / double(tets) : 0.0;
+  return out;
 }
 
 void validate(const ImproveOptions& options) {
@@ -47,29 +64,25 @@ void validate(const ImproveOptions& options) {
   if (!(options.stop_energy > 0) || !std::isfinite(options.stop_energy)) {
     throw UsageError("improve_mesh: the stop energy must be positive and finite");
   }
-  if (options.max_passes < 0 || options.threads < 0 || options.max_refinements < 0) {
-    throw UsageError("improve_mesh: max_passes, threads and max_refinements must not be negative");
+  if (options.max_passes < 0 || options.threads < 0) {
+    throw UsageError("improve_mesh: max_passes and threads must not be negative");
+  }
+  if (!(options.min_sizing > 0 && options.min_sizing <= 1)) {
+    throw UsageError("improve_mesh: min_sizing must be in (0, 1]");
   }
 }
 
-// Halves the local target around tets still above the stop energy (never
-// below 2^-max_refinements of the global target). Returns the vertices refined.
-std::size_t refine_bad_regions(Workspace& ws, int max_refinements) {
-  const double smallest = std::ldexp(1.0, -max_refinements);
-  const std::vector<double> energy = tet_energies(ws.mesh);
-  std::vector<char> refine(ws.mesh.vertex_slots(), 0);
-  for (Index t = 0; t < ws.mesh.tet_slots(); ++t) {
-    if (!ws.mesh.tet_alive(t) || energy[t] < ws.stop_energy) continue;
-    for (const Index v : ws.mesh.tet(t)) refine[v] = 1;
-  }
-  std::size_t count = 0;
-  for (Index v = 0; v < refine.size(); ++v) {
-    if (!refine[v] || ws.sizing[v] <= smallest) continue;
-    ws.sizing[v] = std::max(smallest, ws.sizing[v] * 0.5);
-    ++count;
-  }
-  return count;
+// A pass stalls when it lowers the largest energy by less than half a unit
+// and the mean by less than 10% (written so that a largest energy stuck at
+// infinity, a tet flat on the doubles, stalls too).
+bool stalled(const EnergyState& before, const EnergyState& after) {
+  return !(before.max - after.max >= 0.5) && !(before.mean - after.mean >= 0.1 * before.mean);
 }
+
+// After the local target reached its floor somewhere, improvement ends once
+// the largest energy went down by less than 1% over this many passes (the
+// mean keeps moving a little as splits and collapses trade places).
+constexpr std::size_t kPatience = 5;
 
 std::size_t round_in_place(Workspace& ws) {
   std::size_t left = 0;
@@ -79,52 +92,63 @@ std::size_t round_in_place(Workspace& ws) {
   return left;
 }
 
-std::string pass_summary(int pass, const ImproveStats& s, double max_energy) {
+std::string pass_summary(int pass, const ImproveStats& s, const EnergyState& state) {
   std::ostringstream text;
   text << "improve pass " << pass << ": " << s.splits << " splits, " << s.collapses << " collapses, "
-       << s.swaps_32 + s.swaps_23 + s.swaps_44 << " swaps, " << s.smoothing_moves
-       << " smoothing moves so far; max AMIPS " << max_energy;
+       << s.swaps_32 + s.swaps_23 + s.swaps_44 + s.edge_removals << " swaps, " << s.smoothing_moves
+       << " smoothing moves so far; max AMIPS " << state.max << ", mean " << state.mean << ", " << state.bad
+       << " tets at or above the stop energy";
   return text.str();
 }
 
+void run_pass(Workspace& ws, ImproveStats& stats) {
+  const std::size_t splits = split_pass(ws);
+  check_in_debug(ws.mesh, "improve: split");
+  const std::size_t collapses = collapse_pass(ws);
+  check_in_debug(ws.mesh, "improve: collapse");
+  const SwapCounts swaps = swap_pass(ws);
+  check_in_debug(ws.mesh, "improve: swap");
+  const std::size_t moves = smooth_pass(ws);
+  check_in_debug(ws.mesh, "improve: smooth");
+  stats.rational_vertices = round_in_place(ws);
+  stats.splits += splits;
+  stats.collapses += collapses;
+  stats.swaps_32 += swaps.s32;
+  stats.swaps_23 += swaps.s23;
+  stats.swaps_44 += swaps.s44;
+  stats.edge_removals += swaps.removals;
+  stats.smoothing_moves += moves;
+}
+
+// Passes until the largest energy is below the stop energy. When a pass
+// stalls, the local target shrinks around the bad tets (never two passes in
+// a row, so that the splits it causes can settle); once it reached its floor
+// and kPatience passes brought nothing, improvement ends.
 ImproveStats run_passes(Mesh& mesh, const SurfaceBounds& bounds, const ImproveOptions& options,
                         const Logger& logger) {
   ImproveStats stats;
   stats.before = measure_quality(mesh);
   Workspace ws(mesh, &bounds.surface, options.target_edge_length, options.stop_energy);
   ws.open_boundary = bounds.open_boundary;
-  double max_energy = stats.before.max_amips;
-  int refinements = 0;
-  for (int pass = 0; pass < options.max_passes && max_energy >= options.stop_energy; ++pass) {
-    const std::size_t splits = split_pass(ws);
-    check_in_debug(mesh, "improve: split");
-    const std::size_t collapses = collapse_pass(ws);
-    check_in_debug(mesh, "improve: collapse");
-    const SwapCounts swaps = swap_pass(ws);
-    check_in_debug(mesh, "improve: swap");
-    const std::size_t moves = smooth_pass(ws);
-    check_in_debug(mesh, "improve: smooth");
-    stats.rational_vertices = round_in_place(ws);
-    stats.splits += splits;
-    stats.collapses += collapses;
-    stats.swaps_32 += swaps.s32;
-    stats.swaps_23 += swaps.s23;
-    stats.swaps_44 += swaps.s44;
-    stats.smoothing_moves += moves;
+  ws.triangles = bounds.triangles;
+  std::vector<EnergyState> history{energy_state(mesh, options.stop_energy)};
+  bool just_resized = false, hit_floor = false;
+  for (int pass = 0; pass < options.max_passes && history.back().max >= options.stop_energy; ++pass) {
+    run_pass(ws, stats);
     stats.passes = pass + 1;
-
-    const double previous = max_energy;
-    max_energy = max_tet_energy(mesh);
-    logger.log(LogLevel::debug, pass_summary(pass + 1, stats, max_energy));
+    const EnergyState state = energy_state(mesh, options.stop_energy);
+    logger.log(LogLevel::debug, pass_summary(pass + 1, stats, state));
     logger.progress("improve", double(pass + 1) / options.max_passes);
-    // Written so that an energy stuck at infinity (a tet flat on the doubles)
-    // also counts as stalled: inf > 0.99 * inf is false.
-    const bool stalled = !(max_energy < 0.99 * previous);
-    if (stalled && max_energy >= options.stop_energy) {
-      if (refinements >= options.max_refinements) break;
-      ++refinements;
-      stats.refinements += refine_bad_regions(ws, options.max_refinements);
+    const bool resize = !just_resized && stalled(history.back(), state);
+    history.push_back(state);
+    just_resized = resize;
+    if (resize) {
+      const SizingUpdate update = update_sizing(ws, state.max, options.min_sizing);
+      stats.refinements += update.shrunk;
+      hit_floor = hit_floor || update.hit_floor;
     }
+    const EnergyState& earlier = history[history.size() - std::min(history.size(), kPatience + 1)];
+    if (hit_floor && history.size() > kPatience + 1 && !(state.max < 0.99 * earlier.max)) break;
   }
   stats.rational_vertices = round_in_place(ws);
   stats.after = measure_quality(mesh);

@@ -35,6 +35,8 @@ class Workspace {
   const envelope::Envelope* envelope;
   /// The input's open boundary edges (SurfaceBounds), or null.
   const envelope::Envelope* open_boundary = nullptr;
+  /// The triangles the tracked ids name (SurfaceBounds), or null.
+  const TriangleSoup* triangles = nullptr;
   double target_edge_length;
   double stop_energy;
   /// Per vertex slot: scale of the local target length (1: the global target).
@@ -107,8 +109,8 @@ enum class CollapseGoal { quality, rounding };
 /// Collapses u onto v if every check passes.
 bool try_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal);
 
-/// Edge removal (3-2 or 4-4) of edge (a, b) of tet `hint`; returns 32, 44
-/// or 0.
+/// Edge removal of edge (a, b) of tet `hint`: the n tets around it (3 to 7)
+/// become 2n - 4; returns n, or 0 when nothing lowers the largest energy.
 int try_edge_swap(Workspace& ws, Index a, Index b, Index hint);
 /// Face removal (2-3) of face `f` of tet `t`.
 bool try_face_swap(Workspace& ws, Index t, int f);
@@ -126,10 +128,17 @@ bool try_round_in_place(Workspace& ws, Index v);
 std::size_t split_pass(Workspace& ws);
 std::size_t collapse_pass(Workspace& ws);
 struct SwapCounts {
-  std::size_t s32 = 0, s23 = 0, s44 = 0;
+  std::size_t s32 = 0, s23 = 0, s44 = 0, removals = 0;
 };
 SwapCounts swap_pass(Workspace& ws);
 std::size_t smooth_pass(Workspace& ws);
+struct SizingUpdate {
+  std::size_t shrunk = 0;  ///< vertices whose local target shrank
+  bool hit_floor = false;  ///< some target would have gone below the floor
+};
+/// Shrinks the local target around the tets of high energy (relative to
+/// `max_energy`) and lets it grow back elsewhere, within [min_scale, 1].
+SizingUpdate update_sizing(Workspace& ws, double max_energy, double min_scale);
 /// Energy of every live tet slot (0 for removed slots), in parallel.
 std::vector<double> tet_energies(const Mesh& mesh);
 

@@ -138,8 +138,9 @@ SwapCounts swap_pass(Workspace& ws) {
     for (int x = 0; x < 4 && !swapped; ++x) {
       for (int y = x + 1; y < 4 && !swapped; ++y) {
         const int kind = try_edge_swap(ws, c[x], c[y], t);
-        counts.s32 += kind == 32;
-        counts.s44 += kind == 44;
+        counts.s32 += kind == 3;
+        counts.s44 += kind == 4;
+        counts.removals += kind > 4;
         swapped = kind != 0;
       }
     }

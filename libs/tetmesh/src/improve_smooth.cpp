@@ -8,6 +8,7 @@
 #include "improve_local.h"
 
 #include <mr/kernel/rounding.h>
+#include <mr/spatial/triangle_distance.h>
 
 #include <Eigen/Dense>
 
@@ -74,6 +75,11 @@ struct Freedom {
   /// Fixed only by its tracked faces (a crease, an intersection curve, a
   /// non-disk neighbourhood); `tracked` then holds them all.
   bool creased = false;
+  /// Moves anywhere, then back onto the nearest of `sources` (a creased
+  /// vertex released where its tets are bad).
+  bool project = false;
+  /// The input triangles its tracked faces lie on.
+  std::vector<std::uint32_t> sources;
 };
 
 Vec3d unit_normal(const Mesh& mesh, const FaceKey& f) {
@@ -148,7 +154,26 @@ Freedom freedom_of(const Mesh& mesh, Index v, std::span<const Index> star) {
     out.tracked.clear();
     for (const TrackedFace& f : faces) out.tracked.push_back(f.key);
   }
+  for (const TrackedFace& f : faces) out.sources.insert(out.sources.end(), f.ids.begin(), f.ids.end());
+  std::sort(out.sources.begin(), out.sources.end());
+  out.sources.erase(std::unique(out.sources.begin(), out.sources.end()), out.sources.end());
   return out;
+}
+
+// The nearest point to p on the given triangles of the soup.
+Vec3d project_onto(const TriangleSoup& soup, std::span<const std::uint32_t> triangles, const Vec3d& p) {
+  Vec3d best = p;
+  double best_sq = std::numeric_limits<double>::infinity();
+  for (const std::uint32_t t : triangles) {
+    const auto& c = soup.triangles[t];
+    const spatial::PointOnPrimitive hit =
+        spatial::closest_on_triangle(p, soup.positions[c[0]], soup.positions[c[1]], soup.positions[c[2]]);
+    if (hit.squared_distance < best_sq) {
+      best_sq = hit.squared_distance;
+      best = hit.point;
+    }
+  }
+  return best;
 }
 
 Vec3d restrict_step(Vec3d d, const Freedom& freedom) {
@@ -208,12 +233,20 @@ double average_edge(const std::vector<Opposite>& tets, const Vec3d& p) {
 }  // namespace
 
 bool try_smooth(const Workspace& ws, Index v, std::span<const Index> star) {
-  const Freedom freedom = freedom_of(ws.mesh, v, star);
-  if (freedom.fixed) return false;
+  Freedom freedom = freedom_of(ws.mesh, v, star);
+  const bool releasable = freedom.creased && ws.triangles != nullptr && !freedom.sources.empty();
+  if (freedom.fixed && !releasable) return false;
   const std::vector<Opposite> tets = opposites(ws.mesh, v, star);
   const Vec3d p0 = ws.mesh.position(v).approx;
   const EnergyTerms before = star_energy(p0, tets, true);
   if (!before.finite) return false;
+  // A creased vertex moves only where its tets are bad, so that features
+  // are blunted (within the envelope) only where quality needs it.
+  if (freedom.fixed) {
+    if (before.max < ws.stop_energy) return false;
+    freedom.fixed = false;
+    freedom.project = true;
+  }
   const Vec3d d = step_direction(before, freedom, average_edge(tets, p0));
   if (d.squaredNorm() == 0) return false;
   for (double s = 1; s > 1.0 / 1024; s /= 2) {
@@ -221,7 +254,8 @@ bool try_smooth(const Workspace& ws, Index v, std::span<const Index> star) {
     for (int axis = 0; axis < 3; ++axis) {
       if (freedom.frozen_axis[axis]) p[axis] = p0[axis];
     }
-    if (p == p0) break;
+    if (freedom.project) p = project_onto(*ws.triangles, freedom.sources, p);
+    if (p == p0) continue;
     const EnergyTerms after = star_energy(p, tets, false);
     if (!after.finite || after.value >= before.value || after.max > before.max) continue;
     if (!valid_position(ws, v, star, p, freedom)) continue;

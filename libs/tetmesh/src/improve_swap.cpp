@@ -1,12 +1,14 @@
-// Swaps: 3-2 and 4-4 edge removal, 2-3 face removal. Each new tet is an old
-// tet with one corner replaced, keeping a face of the cavity's boundary, so
-// its orientation follows from the old one; the exact positivity test then
+// Swaps: edge removal (the 3 to 7 tets around an edge; 3-2 and 4-4 are its
+// smallest cases) and 2-3 face removal. Each new tet is an old tet with
+// corners renamed, keeping a face of the cavity's boundary, so its
+// orientation follows from the old one; the exact positivity test then
 // decides whether the swap is geometrically valid. Swaps never remove a
 // tracked face and are taken only when they lower the largest energy.
 
 #include "improve_local.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace mr::tetmesh::improve_detail {
 namespace {
@@ -66,45 +68,102 @@ bool edge_has_tracked_face(const Mesh& mesh, std::span<const Index> tets, Index 
   return false;
 }
 
-// The new tets of a 4-4 swap whose new edge joins ring[k] and ring[k + 2].
-std::vector<Tet> four_four(const Mesh& mesh, const EdgeRing& r, int k, Index a, Index b) {
-  const Tet& near = mesh.tet(r.tets[k]);
-  const Tet& far = mesh.tet(r.tets[k + 2]);
-  const Index xk = r.ring[k], xk2 = r.ring[k + 2];
-  return {replaced(near, b, xk2), replaced(near, a, xk2), replaced(far, b, xk), replaced(far, a, xk)};
-}
+// Edge removal (Shewchuk, "Two Discrete Optimization Algorithms for the
+// Topological Improvement of Tetrahedral Meshes"): the n tets around edge
+// (a, b) are replaced by two tets, one with a and one with b, on each
+// triangle of a triangulation of the ring polygon. Among the triangulations
+// the one with the smallest largest energy is found by dynamic programming
+// over sub-polygons (Klincsek), O(n^3) for the ring's n <= kMaxRing.
+constexpr int kMaxRing = 7;
+
+class RingTriangulation {
+ public:
+  RingTriangulation(const Mesh& mesh, const EdgeRing& r, Index a, Index b)
+      : mesh_(mesh), ring_(r.ring), a_(a), b_(b), n_(int(r.ring.size())) {
+    // The first tet, positive, has corners a, b, ring[0], ring[1]: a tet of
+    // the new set is it with ring[0], ring[1] and one of a, b renamed, which
+    // keeps the orientation because triangles in ring order turn as the ring.
+    first_ = mesh.tet(r.tets[0]);
+    for (int i = 0; i < n_; ++i) {
+      for (int j = 0; j < n_; ++j) cost_[i][j] = kUnknown;
+    }
+  }
+
+  /// The largest energy of the best triangulation, and its tets.
+  double solve(std::vector<Tet>& tets) {
+    const double best = best_between(0, n_ - 1);
+    collect(0, n_ - 1, tets);
+    return best;
+  }
+
+ private:
+  static constexpr double kUnknown = -1.0;
+
+  // The two tets on triangle (ring[i], ring[j], ring[k]), i < j < k.
+  std::array<Tet, 2> tets_on(int i, int j, int k) const {
+    const Index ri = ring_[i], rj = ring_[j], rk = ring_[k], r0 = ring_[0], r1 = ring_[1];
+    std::array<Tet, 2> out{first_, first_};
+    for (Index& w : out[0]) w = w == b_ ? rk : w == r0 ? ri : w == r1 ? rj : w;
+    for (Index& w : out[1]) w = w == a_ ? rk : w == r0 ? ri : w == r1 ? rj : w;
+    return out;
+  }
+
+  double triangle_cost(int i, int j, int k) const {
+    const std::array<Tet, 2> tets = tets_on(i, j, k);
+    return max_energy(mesh_, tets);
+  }
+
+  // Best largest energy over triangulations of the sub-polygon i..j.
+  double best_between(int i, int j) {
+    if (j - i < 2) return 0.0;
+    if (cost_[i][j] != kUnknown) return cost_[i][j];
+    double best = std::numeric_limits<double>::infinity();
+    int split = -1;
+    for (int k = i + 1; k < j; ++k) {
+      const double c = std::max({triangle_cost(i, k, j), best_between(i, k), best_between(k, j)});
+      if (split < 0 || c < best) {
+        best = c;
+        split = k;
+      }
+    }
+    cost_[i][j] = best;
+    split_[i][j] = split;
+    return best;
+  }
+
+  void collect(int i, int j, std::vector<Tet>& tets) const {
+    if (j - i < 2) return;
+    const int k = split_[i][j];
+    for (const Tet& t : tets_on(i, k, j)) tets.push_back(t);
+    collect(i, k, tets);
+    collect(k, j, tets);
+  }
+
+  const Mesh& mesh_;
+  const std::vector<Index>& ring_;
+  Index a_, b_;
+  int n_;
+  Tet first_{};
+  double cost_[kMaxRing][kMaxRing];
+  int split_[kMaxRing][kMaxRing] = {};
+};
 
 }  // namespace
 
 int try_edge_swap(Workspace& ws, Index a, Index b, Index hint) {
   Mesh& mesh = ws.mesh;
   const std::vector<Index> tets = ws.edge_tets(a, b, hint);
-  if (tets.size() != 3 && tets.size() != 4) return 0;
+  if (tets.size() < 3 || tets.size() > std::size_t(kMaxRing)) return 0;
   if (edge_has_tracked_face(mesh, tets, a, b)) return 0;
   const EdgeRing ring = edge_ring(mesh, tets, a, b);
   if (ring.tets.empty()) return 0;
 
   const double old_max = max_energy_of(mesh, tets);
-  std::vector<std::vector<Tet>> options;
-  if (tets.size() == 3) {
-    const Tet& t0 = mesh.tet(ring.tets[0]);
-    options.push_back({replaced(t0, b, ring.ring[2]), replaced(t0, a, ring.ring[2])});
-  } else {
-    options.push_back(four_four(mesh, ring, 0, a, b));
-    options.push_back(four_four(mesh, ring, 1, a, b));
-  }
-  int best = -1;
-  double best_max = old_max;
-  for (std::size_t i = 0; i < options.size(); ++i) {
-    const double e = max_energy(mesh, options[i]);
-    if (e < best_max && all_positive(mesh, options[i])) {
-      best = int(i);
-      best_max = e;
-    }
-  }
-  if (best < 0) return 0;
-  replace_tets(ws, ring.tets, options[best], same_faces);
-  return tets.size() == 3 ? 32 : 44;
+  std::vector<Tet> new_tets;
+  const double new_max = RingTriangulation(mesh, ring, a, b).solve(new_tets);
+  if (!(new_max < old_max) || !all_positive(mesh, new_tets)) return 0;
+  replace_tets(ws, ring.tets, new_tets, same_faces);
+  return int(tets.size());
 }
 
 bool try_face_swap(Workspace& ws, Index t, int f) {
