@@ -75,8 +75,12 @@ struct Freedom {
   /// Fixed only by its tracked faces (a crease, an intersection curve, a
   /// non-disk neighbourhood); `tracked` then holds them all.
   bool creased = false;
+  /// Its tracked faces form a disk (two faces on each surface edge), each on
+  /// one input triangle: a crease of one surface, not a line where parts
+  /// meet or cross, nor overlapping copies.
+  bool one_sheet = false;
   /// Moves anywhere, then back onto the nearest of `sources` (a creased
-  /// vertex released where its tets are bad).
+  /// vertex of one sheet released where its tets are bad).
   bool project = false;
   /// The input triangles its tracked faces lie on.
   std::vector<std::uint32_t> sources;
@@ -103,6 +107,8 @@ bool surface_freedom(const Mesh& mesh, const std::vector<TrackedFace>& faces, In
     if (j - i != 2) return false;
     i = j;
   }
+  out.one_sheet =
+      std::all_of(faces.begin(), faces.end(), [](const TrackedFace& f) { return f.ids.size() == 1; });
   const Vec3d first = unit_normal(mesh, faces[0].key);
   Vec3d sum = Vec3d::Zero();
   std::vector<Vec3d> normals;
@@ -234,7 +240,10 @@ double average_edge(const std::vector<Opposite>& tets, const Vec3d& p) {
 
 bool try_smooth(const Workspace& ws, Index v, std::span<const Index> star) {
   Freedom freedom = freedom_of(ws.mesh, v, star);
-  const bool releasable = freedom.creased && ws.triangles != nullptr && !freedom.sources.empty();
+  // Vertices where parts meet stay: projected onto one part's triangle,
+  // the other part's faces there turned over for the filter's winding
+  // number (manifold/openscad-nonmanifold-crash left the envelope by 19 eps).
+  const bool releasable = freedom.creased && freedom.one_sheet && ws.triangles != nullptr;
   if (freedom.fixed && !releasable) return false;
   const std::vector<Opposite> tets = opposites(ws.mesh, v, star);
   const Vec3d p0 = ws.mesh.position(v).approx;
