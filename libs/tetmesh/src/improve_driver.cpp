@@ -41,11 +41,10 @@ struct EnergyState {
   std::size_t bad = 0;
 };
 
-EnergyState energy_state(const Mesh& mesh, double stop_energy) {
+EnergyState energy_state(const Mesh& mesh, std::span<const double> energy, double stop_energy) {
   EnergyState out;
   double sum = 0;
   std::size_t tets = 0;
-  const std::vector<double> energy = tet_energies(mesh);
   for (Index t = 0; t < energy.size(); ++t) {
     if (!mesh.tet_alive(t)) continue;
     out.max = std::max(out.max, energy[t]);
@@ -131,19 +130,20 @@ ImproveStats run_passes(Mesh& mesh, const SurfaceBounds& bounds, const ImproveOp
   Workspace ws(mesh, &bounds.surface, options.target_edge_length, options.stop_energy);
   ws.open_boundary = bounds.open_boundary;
   ws.triangles = bounds.triangles;
-  std::vector<EnergyState> history{energy_state(mesh, options.stop_energy)};
+  std::vector<EnergyState> history{energy_state(mesh, tet_energies(mesh), options.stop_energy)};
   bool just_resized = false, hit_floor = false;
   for (int pass = 0; pass < options.max_passes && history.back().max >= options.stop_energy; ++pass) {
     run_pass(ws, stats);
     stats.passes = pass + 1;
-    const EnergyState state = energy_state(mesh, options.stop_energy);
+    const std::vector<double> energy = tet_energies(mesh);
+    const EnergyState state = energy_state(mesh, energy, options.stop_energy);
     logger.log(LogLevel::debug, pass_summary(pass + 1, stats, state));
     logger.progress("improve", double(pass + 1) / options.max_passes);
     const bool resize = !just_resized && stalled(history.back(), state);
     history.push_back(state);
     just_resized = resize;
     if (resize) {
-      const SizingUpdate update = update_sizing(ws, state.max, options.min_sizing);
+      const SizingUpdate update = update_sizing(ws, energy, state.max, options.min_sizing);
       stats.refinements += update.shrunk;
       hit_floor = hit_floor || update.hit_floor;
     }

@@ -137,8 +137,10 @@ struct SizingUpdate {
   bool hit_floor = false;  ///< some target would have gone below the floor
 };
 /// Shrinks the local target around the tets of high energy (relative to
-/// `max_energy`) and lets it grow back elsewhere, within [min_scale, 1].
-SizingUpdate update_sizing(Workspace& ws, double max_energy, double min_scale);
+/// `max_energy`; `energy` per tet slot, as tet_energies gives) and lets it
+/// grow back elsewhere, within [min_scale, 1].
+SizingUpdate update_sizing(Workspace& ws, std::span<const double> energy, double max_energy,
+                           double min_scale);
 /// Energy of every live tet slot (0 for removed slots), in parallel.
 std::vector<double> tet_energies(const Mesh& mesh);
 

@@ -31,11 +31,11 @@ struct Visit {
 
 }  // namespace
 
-SizingUpdate update_sizing(Workspace& ws, double max_energy, double min_scale) {
+SizingUpdate update_sizing(Workspace& ws, std::span<const double> energy, double max_energy,
+                           double min_scale) {
   Mesh& mesh = ws.mesh;
   if (ws.sizing.size() < mesh.vertex_slots()) ws.sizing.resize(mesh.vertex_slots(), 1.0);
   const double filter = filter_energy(max_energy, ws.stop_energy);
-  const std::vector<double> energy = tet_energies(mesh);
   const VertexTets incidence(mesh);
   std::vector<double> factor(mesh.vertex_slots(), kRecover);
   std::vector<char> visited(mesh.vertex_slots(), 0);

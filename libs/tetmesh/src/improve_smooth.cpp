@@ -82,7 +82,8 @@ struct Freedom {
   /// Moves anywhere, then back onto the nearest of `sources` (a creased
   /// vertex of one sheet released where its tets are bad).
   bool project = false;
-  /// The input triangles its tracked faces lie on.
+  /// The input triangles its tracked faces lie on (filled for a creased
+  /// vertex of one sheet only).
   std::vector<std::uint32_t> sources;
 };
 
@@ -159,10 +160,13 @@ Freedom freedom_of(const Mesh& mesh, Index v, std::span<const Index> star) {
     out.tangent = false;
     out.tracked.clear();
     for (const TrackedFace& f : faces) out.tracked.push_back(f.key);
+    // Only a creased vertex of one sheet may be released and projected.
+    if (out.creased && out.one_sheet) {
+      for (const TrackedFace& f : faces) out.sources.insert(out.sources.end(), f.ids.begin(), f.ids.end());
+      std::sort(out.sources.begin(), out.sources.end());
+      out.sources.erase(std::unique(out.sources.begin(), out.sources.end()), out.sources.end());
+    }
   }
-  for (const TrackedFace& f : faces) out.sources.insert(out.sources.end(), f.ids.begin(), f.ids.end());
-  std::sort(out.sources.begin(), out.sources.end());
-  out.sources.erase(std::unique(out.sources.begin(), out.sources.end()), out.sources.end());
   return out;
 }
 

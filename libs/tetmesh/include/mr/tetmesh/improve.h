@@ -89,8 +89,8 @@ struct SurfaceBounds {
   /// surface while its faces stay in the surface envelope.
   const envelope::Envelope* open_boundary;
   /// The triangles the tracked faces' ids name, or null. With them, a
-  /// vertex on a crease or where surfaces meet may move where its tets are
-  /// bad: it is projected back onto the nearest of its own triangles.
+  /// vertex on a crease of one sheet may move where its tets are bad: it is
+  /// projected back onto the nearest of its own triangles.
   const TriangleSoup* triangles = nullptr;
 };
 
