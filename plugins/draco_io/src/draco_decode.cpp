@@ -7,6 +7,7 @@
 // attributes (the face-region attribute of a .drc) become one vertex again.
 
 #include "draco_codec_detail.h"
+#include "draco_declared_sizes.h"
 
 #include <mr/core/errors.h>
 
@@ -29,6 +30,7 @@ std::unique_ptr<draco::Mesh> decode_mesh(std::string_view bytes, const std::stri
   const auto invalid = [&](const std::string& why) {
     return InputError(source, "not a valid Draco mesh: " + why);
   };
+  check_draco_declared_sizes(bytes, source);
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
   draco::Decoder decoder;

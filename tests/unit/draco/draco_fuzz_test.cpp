@@ -118,3 +118,68 @@ TEST_CASE("damaged .drc files with face regions read or fail cleanly", "[draco][
     }
   }
 }
+
+namespace {
+
+void append_varint(std::vector<char>& bytes, std::uint32_t value) {
+  for (; value >= 0x80; value >>= 7) bytes.push_back(static_cast<char>((value & 0x7f) | 0x80));
+  bytes.push_back(static_cast<char>(value));
+}
+
+void append_name(std::vector<char>& bytes, const std::string& name) {
+  bytes.push_back(static_cast<char>(name.size()));
+  bytes.insert(bytes.end(), name.begin(), name.end());
+}
+
+// An edgebreaker mesh header (bitstream 2.2) claiming `count` vertices,
+// faces and symbols, optionally after metadata with a nested block.
+std::vector<char> claiming_edgebreaker(std::uint32_t count, bool with_metadata) {
+  std::vector<char> bytes = {
+      'D', 'R', 'A', 'C', 'O', 2, 2, 1, 1, 0, static_cast<char>(with_metadata ? 0x80 : 0)};
+  if (with_metadata) {
+    append_varint(bytes, 1);  // one attribute's metadata
+    append_varint(bytes, 0);  // its unique id
+    append_varint(bytes, 1);  // one entry
+    append_name(bytes, "name");
+    append_varint(bytes, 11);
+    for (char c : std::string("face_region")) bytes.push_back(c);
+    append_varint(bytes, 0);  // no sub-blocks
+    append_varint(bytes, 0);  // the geometry's: no entries,
+    append_varint(bytes, 1);  // one sub-block,
+    append_name(bytes, "sub");
+    append_varint(bytes, 0);  // empty
+    append_varint(bytes, 0);
+  }
+  bytes.push_back(0);           // standard traversal
+  append_varint(bytes, count);  // encoded vertices
+  append_varint(bytes, count);  // faces
+  bytes.push_back(0);           // attribute data
+  append_varint(bytes, count);  // symbols
+  append_varint(bytes, 0);      // split symbols
+  bytes.resize(bytes.size() + 40, 0);
+  return bytes;
+}
+
+}  // namespace
+
+TEST_CASE("a Draco mesh claiming more faces than its bytes can hold is refused before decoding",
+          "[draco][fuzz]") {
+  // The fuzzer's find: 73 bytes claiming 16 million faces made the decoder
+  // allocate 15 GB before it failed.
+  for (bool with_metadata : {false, true}) {
+    const std::vector<char> bytes = claiming_edgebreaker(16'000'000, with_metadata);
+    try {
+      plugins::decode_draco(std::string_view(bytes.data(), bytes.size()), "claims.drc");
+      FAIL("decoded");
+    } catch (const InputError& error) {
+      CHECK_THAT(error.what(), Catch::Contains("claims 16000000 elements"));
+    }
+  }
+  // Counts a file of that size can hold go on to the decoder (which rejects these bytes).
+  const std::vector<char> small = claiming_edgebreaker(100, true);
+  try {
+    plugins::decode_draco(std::string_view(small.data(), small.size()), "small.drc");
+  } catch (const InputError& error) {
+    CHECK_THAT(error.what(), !Catch::Contains("claims"));
+  }
+}
