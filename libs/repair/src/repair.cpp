@@ -66,12 +66,35 @@ void check_arguments(const TetMesh& mesh, std::span<const std::uint8_t> inside, 
   if (!any_inside) throw RunError("repair: no tet was kept: the input encloses no volume");
 }
 
-TriangleSoup clean_up(const TriangleSoup& peeled, const TriangleSoup& input, const RepairOptions& options,
-                      RepairResult& result) {
+// What the clean-up may move faces within epsilon of: the input, and the
+// peeled faces that lie outside the input's envelope (the filled ones,
+// where a soup or a hole left the filter no input to follow). Without them
+// no face there could change: a soup's surface kept every sliver edge the
+// arrangement of its triangles made, down to 1e-9 long, and no float32
+// position was left for its vertices.
+TriangleSoup clean_up_reference(const TriangleSoup& peeled, const TriangleSoup& input,
+                                const envelope::Envelope& input_envelope) {
+  TriangleSoup reference;
+  reference.positions = input.positions;
+  reference.triangles = input.triangles;
+  const std::vector<std::uint8_t> inside = input_envelope.are_inside(peeled);
+  const Index offset = static_cast<Index>(reference.positions.size());
+  reference.positions.insert(reference.positions.end(), peeled.positions.begin(), peeled.positions.end());
+  for (std::size_t f = 0; f < peeled.triangles.size(); ++f)
+    if (!inside[f]) {
+      const Triangle& t = peeled.triangles[f];
+      reference.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    }
+  return reference;
+}
+
+TriangleSoup clean_up(const TriangleSoup& peeled, const TriangleSoup& input, const envelope::Envelope& envelope,
+                      const RepairOptions& options, RepairResult& result) {
   simplify::SimplifyOptions simplify_options;
   simplify_options.epsilon_abs = options.epsilon;
   simplify_options.threads = options.threads;
-  simplify::SimplifyResult simplified = simplify::simplify_in_envelope_of(peeled, input, simplify_options);
+  simplify::SimplifyResult simplified =
+      simplify::simplify_in_envelope_of(peeled, clean_up_reference(peeled, input, envelope), simplify_options);
   result.collapses = simplified.collapses;
   result.flips = simplified.flips;
   return std::move(simplified.soup);
@@ -86,14 +109,14 @@ RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::
   TetMesh work;
   work.positions = mesh.positions;
   work.tets = mesh.tets;
+  std::unique_ptr<envelope::Envelope> envelope;
+  if (!input.triangles.empty()) {
+    envelope::EnvelopeOptions envelope_options;
+    envelope_options.epsilon = options.epsilon;
+    envelope = envelope::make_envelope(input, envelope_options);
+  }
   {
     StageClock clock(result, "manifold");
-    std::unique_ptr<envelope::Envelope> envelope;
-    if (!input.triangles.empty()) {
-      envelope::EnvelopeOptions envelope_options;
-      envelope_options.epsilon = options.epsilon;
-      envelope = envelope::make_envelope(input, envelope_options);
-    }
     ManifoldFixOptions fix;
     fix.max_move = kMoveFraction * options.epsilon;
     fix.collar_width = is_closed(input) ? kCollarFraction * options.epsilon : 0.0;
@@ -107,7 +130,7 @@ RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::
   }
   if (options.cleanup && !input.triangles.empty()) {
     StageClock clock(result, "cleanup");
-    result.surface = clean_up(result.surface, input, options, result);
+    result.surface = clean_up(result.surface, input, *envelope, options, result);
   }
   if (options.output_grid) {
     StageClock clock(result, "round");
