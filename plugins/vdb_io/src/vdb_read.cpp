@@ -1,4 +1,5 @@
 // Level set -> mesh: OpenVDB's volumeToMesh on the chosen float grid.
+#include "vdb_declared_sizes.h"
 #include "vdb_level_set.h"
 
 #include <mr/core/errors.h>
@@ -42,6 +43,7 @@ FloatGrid::Ptr choose_grid(const openvdb::GridPtrVec& grids, const std::string& 
 // (delayLoad = false). A read past the end throws (failbit) rather than
 // leaving OpenVDB to go on with values it never read.
 FloatGrid::Ptr read_float_grid(std::string_view bytes, const std::string& path) {
+  check_vdb_declared_sizes(bytes, path);
   std::istringstream in(std::string(bytes), std::ios::binary);
   in.exceptions(std::ios::failbit | std::ios::badbit);
   openvdb::io::Stream stream(in, false);

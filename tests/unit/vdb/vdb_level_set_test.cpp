@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -204,6 +205,45 @@ TEST_CASE("writing a level set is deterministic, whatever the thread count", "[v
   CHECK(a.size() > 100);
   CHECK(a == read_all(dir / "b.vdb"));
   CHECK(a == read_all(dir / "c.vdb"));
+}
+
+TEST_CASE("a .vdb stating a name or metadata longer than the file is refused before reading it", "[vdb]") {
+  // The fuzzer's find: OpenVDB allocated and filled a 4 GB name from a tiny file.
+  test::TempDir dir("vdb_lengths");
+  const io::Registry registry = io::make_default_registry();
+  io::WriteOptions write;
+  write.level_set.voxel_size = 0.25;
+  io::write_surface(registry, test::cube_soup(), dir / "cube.vdb", write);
+  const std::vector<char> bytes = read_all(dir / "cube.vdb");
+  const auto patch_length_before = [&](const std::string& text, const char* what) {
+    const std::string all(bytes.begin(), bytes.end());
+    const std::size_t at = all.find(text);
+    REQUIRE(at != std::string::npos);
+    REQUIRE(at >= 4);
+    std::vector<char> patched = bytes;
+    const std::uint32_t huge = 0xFFFFFFF0u;
+    std::memcpy(patched.data() + at - 4, &huge, 4);
+    const auto file = dir / "patched.vdb";
+    test::write_bytes(file, patched);
+    try {
+      io::read_surface(registry, file);
+      FAIL("read");
+    } catch (const InputError& e) {
+      CHECK_THAT(e.what(), Catch::Contains(std::string("the ") + what + " claims 4294967280 bytes"));
+    }
+  };
+  patch_length_before("surface", "grid name");
+  patch_length_before("Tree_float", "grid type");
+  patch_length_before("level set", "metadata value");
+  // A fixed-size value whose stated size differs (OpenVDB would read 4 bytes and go on out of step).
+  std::string retyped(bytes.begin(), bytes.end());
+  const std::size_t vec3i = retyped.find("vec3i");
+  REQUIRE(vec3i != std::string::npos);
+  retyped.replace(vec3i, 5, "int32");
+  test::write_bytes(dir / "retyped.vdb", std::vector<char>(retyped.begin(), retyped.end()));
+  CHECK_THROWS_WITH(io::read_surface(registry, dir / "retyped.vdb"),
+                    Catch::Contains("holds 12 bytes, not 4"));
+  CHECK(round_trip(test::cube_soup(), dir / "again.vdb", 0.25).triangles.size() > 0);
 }
 
 }  // namespace mr
