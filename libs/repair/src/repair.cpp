@@ -88,13 +88,14 @@ TriangleSoup clean_up_reference(const TriangleSoup& peeled, const TriangleSoup& 
   return reference;
 }
 
-TriangleSoup clean_up(const TriangleSoup& peeled, const TriangleSoup& input, const envelope::Envelope& envelope,
-                      const RepairOptions& options, RepairResult& result) {
+TriangleSoup clean_up(const TriangleSoup& peeled, const TriangleSoup& input,
+                      const envelope::Envelope& envelope, const RepairOptions& options,
+                      RepairResult& result) {
   simplify::SimplifyOptions simplify_options;
   simplify_options.epsilon_abs = options.epsilon;
   simplify_options.threads = options.threads;
-  simplify::SimplifyResult simplified =
-      simplify::simplify_in_envelope_of(peeled, clean_up_reference(peeled, input, envelope), simplify_options);
+  simplify::SimplifyResult simplified = simplify::simplify_in_envelope_of(
+      peeled, clean_up_reference(peeled, input, envelope), simplify_options);
   result.collapses = simplified.collapses;
   result.flips = simplified.flips;
   return std::move(simplified.soup);

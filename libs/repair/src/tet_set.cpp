@@ -46,8 +46,9 @@ FaceNeighbours::FaceNeighbours(const std::vector<Tet>& tets) : across_(4 * tets.
       entries.push_back({key, static_cast<Index>(t), k});
     }
   // (key, tet) orders the entries totally: the same order whatever the thread count.
-  tbb::parallel_sort(entries.begin(), entries.end(),
-                     [](const Entry& a, const Entry& b) { return std::tie(a.key, a.tet) < std::tie(b.key, b.tet); });
+  tbb::parallel_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return std::tie(a.key, a.tet) < std::tie(b.key, b.tet);
+  });
   for (std::size_t i = 0; i < entries.size();) {
     std::size_t j = i + 1;
     while (j < entries.size() && entries[j].key == entries[i].key) ++j;
