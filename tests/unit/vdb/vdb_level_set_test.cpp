@@ -58,6 +58,14 @@ std::vector<char> read_all(const std::filesystem::path& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// The bytes of the unit cube written as a level set with this voxel size.
+std::vector<char> cube_vdb_bytes(const std::filesystem::path& file, double voxel) {
+  io::WriteOptions write;
+  write.level_set.voxel_size = voxel;
+  io::write_surface(io::make_default_registry(), test::cube_soup(), file, write);
+  return read_all(file);
+}
+
 }  // namespace
 
 TEST_CASE("a cube round-trips through a level set", "[vdb]") {
@@ -147,10 +155,7 @@ TEST_CASE("garbage .vdb input is exit 2 naming the file, with no output", "[vdb]
 TEST_CASE("truncated .vdb files are input errors naming the file", "[vdb]") {
   test::TempDir dir("vdb_truncated");
   const io::Registry registry = io::make_default_registry();
-  io::WriteOptions write;
-  write.level_set.voxel_size = 0.1;
-  io::write_surface(registry, test::cube_soup(), dir / "cube.vdb", write);
-  const std::vector<char> bytes = read_all(dir / "cube.vdb");
+  const std::vector<char> bytes = cube_vdb_bytes(dir / "cube.vdb", 0.1);
   REQUIRE(bytes.size() > 200);
   const auto cut_file = dir / "cut.vdb";
   for (std::size_t size = 1; size < bytes.size(); size += std::max<std::size_t>(1, bytes.size() / 97)) {
@@ -211,10 +216,7 @@ TEST_CASE("a .vdb stating a name or metadata longer than the file is refused bef
   // The fuzzer's find: OpenVDB allocated and filled a 4 GB name from a tiny file.
   test::TempDir dir("vdb_lengths");
   const io::Registry registry = io::make_default_registry();
-  io::WriteOptions write;
-  write.level_set.voxel_size = 0.25;
-  io::write_surface(registry, test::cube_soup(), dir / "cube.vdb", write);
-  const std::vector<char> bytes = read_all(dir / "cube.vdb");
+  const std::vector<char> bytes = cube_vdb_bytes(dir / "cube.vdb", 0.25);
   const auto patch_length_before = [&](const std::string& text, const char* what) {
     const std::string all(bytes.begin(), bytes.end());
     const std::size_t at = all.find(text);
