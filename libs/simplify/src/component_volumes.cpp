@@ -5,6 +5,8 @@
 
 #include <mr/core/union_find.h>
 
+#include <cmath>
+
 namespace mr::simplify {
 namespace {
 
@@ -39,6 +41,7 @@ void MeshState::build_component_volumes() {
     const std::uint32_t c = component_[mesh_.fv_begin(f)->idx()];
     volume6_[c] += volume6(corners(f), reference[c]);
   }
+  initial_volume6_ = volume6_;
 }
 
 // The change does not depend on the reference point: the old and the new
@@ -59,22 +62,26 @@ double MeshState::flip_volume_change(TriMesh::EdgeHandle e) const {
          volume6(corners(mesh_.face_handle(mesh_.halfedge_handle(e, 1))), reference);
 }
 
-// A closed component given inside out (negative volume) stays so: only a
-// change of sign is refused.
-bool MeshState::volume_keeps_sign(TriMesh::VertexHandle v, double change) const {
+// A closed component keeps its sign (one given inside out, with negative
+// volume, stays so) and at least half of the volume it started with: the
+// envelope alone lets a solid thinner than epsilon (a sheet thickened to
+// epsilon) be flattened to a tet of volume 1e-19, whose sign float32
+// rounding then turns over.
+bool MeshState::keeps_enough_volume(TriMesh::VertexHandle v, double change) const {
   const std::uint32_t c = component_[v.idx()];
   const double before = volume6_[c];
   if (!closed_[c] || before == 0.0) return true;
   const double after = before + change;
-  return before > 0.0 ? after > 0.0 : after < 0.0;
+  const bool same_sign = before > 0.0 ? after > 0.0 : after < 0.0;
+  return same_sign && std::abs(after) >= 0.5 * std::abs(initial_volume6_[c]);
 }
 
 bool MeshState::collapse_keeps_volume(TriMesh::HalfedgeHandle h) const {
-  return volume_keeps_sign(mesh_.to_vertex_handle(h), collapse_volume_change(h));
+  return keeps_enough_volume(mesh_.to_vertex_handle(h), collapse_volume_change(h));
 }
 
 bool MeshState::flip_keeps_volume(TriMesh::EdgeHandle e) const {
-  return volume_keeps_sign(mesh_.from_vertex_handle(mesh_.halfedge_handle(e, 0)), flip_volume_change(e));
+  return keeps_enough_volume(mesh_.from_vertex_handle(mesh_.halfedge_handle(e, 0)), flip_volume_change(e));
 }
 
 }  // namespace mr::simplify

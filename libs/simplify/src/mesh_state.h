@@ -137,7 +137,7 @@ class MeshState {
   void build_component_volumes();
   double collapse_volume_change(TriMesh::HalfedgeHandle h) const;
   double flip_volume_change(TriMesh::EdgeHandle e) const;
-  bool volume_keeps_sign(TriMesh::VertexHandle v, double change) const;
+  bool keeps_enough_volume(TriMesh::VertexHandle v, double change) const;
 
   /// replaced(face index) tells faces the operation removes or rewrites;
   /// old_faces are their corners.
@@ -167,6 +167,7 @@ class MeshState {
   std::size_t live_faces_ = 0;
   std::vector<std::uint32_t> component_;  // per vertex; collapses and flips never join or split components
   std::vector<double> volume6_;           // per component: six times its signed volume
+  std::vector<double> initial_volume6_;   // per component: volume6_ before the first change
   std::vector<std::uint8_t> closed_;      // per component: no boundary edge
 };
 
