@@ -34,13 +34,15 @@ class Reader {
     for (int k = 0; k < 4; ++k) value |= std::uint32_t(static_cast<std::uint8_t>(bytes_[at_++])) << (8 * k);
     return value;  // little-endian, as Draco writes it
   }
+  // LEB128 of at most 5 bytes, its bits past 32 dropped: what Draco's
+  // decoder makes of it (a longer one it refuses).
   std::optional<std::uint32_t> varint() {
     std::uint64_t value = 0;
     for (int shift = 0; shift < 35; shift += 7) {
       const auto b = byte();
       if (!b) return std::nullopt;
       value |= std::uint64_t(*b & 0x7f) << shift;
-      if (!(*b & 0x80)) return value <= UINT32_MAX ? std::optional<std::uint32_t>(value) : std::nullopt;
+      if (!(*b & 0x80)) return static_cast<std::uint32_t>(value);
     }
     return std::nullopt;
   }
@@ -97,8 +99,8 @@ bool skip_geometry_metadata(Reader& in) {
   return skip_metadata(in);
 }
 
-// The counts the decoder allocates for, in bitstream order; empty when the
-// bytes end or the method is unknown.
+// The counts the decoder allocates for, in bitstream order, as far as the
+// bytes go (Draco allocates for each as it reads it); empty for an unknown method.
 std::vector<std::uint32_t> declared_counts(Reader& in, int bitstream, std::uint8_t method) {
   std::vector<std::uint32_t> counts;
   const auto take = [&](std::optional<std::uint32_t> value) {
@@ -107,17 +109,14 @@ std::vector<std::uint32_t> declared_counts(Reader& in, int bitstream, std::uint8
   };
   if (method == kSequential) {
     const auto faces_or_points = [&] { return bitstream < version(2, 2) ? in.fixed32() : in.varint(); };
-    if (!take(faces_or_points())) return {};
-    if (!take(faces_or_points())) return {};
+    if (take(faces_or_points())) take(faces_or_points());
     return counts;
   }
-  if (method != kEdgebreaker || !in.byte()) return {};                     // the traversal decoder type
-  if (bitstream < version(2, 2) && !take(in.count(bitstream))) return {};  // new vertices
-  if (!take(in.count(bitstream))) return {};                               // encoded vertices
-  if (!take(in.count(bitstream))) return {};                               // faces
-  if (!in.byte()) return {};                                               // attribute data
-  if (!take(in.count(bitstream))) return {};                               // symbols
-  if (!take(in.count(bitstream))) return {};                               // split symbols
+  if (method != kEdgebreaker || !in.byte()) return counts;                      // the traversal decoder type
+  if (bitstream < version(2, 2) && !take(in.count(bitstream))) return counts;   // new vertices
+  if (!take(in.count(bitstream)) || !take(in.count(bitstream))) return counts;  // encoded vertices, faces
+  if (!in.byte()) return counts;                                                // attribute data
+  if (take(in.count(bitstream))) take(in.count(bitstream));                     // symbols, split symbols
   return counts;
 }
 

@@ -175,6 +175,14 @@ TEST_CASE("a Draco mesh claiming more faces than its bytes can hold is refused b
       CHECK_THAT(error.what(), Catch::Contains("claims 16000000 elements"));
     }
   }
+  // A 5-byte varint whose bits past 32 Draco drops (the fuzzer's 36-byte file
+  // that took 23 GB): 0xFD 0xFF 0xFF 0xFE 0x44 is read as 0x4FDFFFFD faces.
+  std::vector<char> long_varint = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, 1, 0, 0, 0, 0};
+  for (int b : {0xFD, 0xFF, 0xFF, 0xFE, 0x44}) long_varint.push_back(static_cast<char>(b));
+  long_varint.resize(36, static_cast<char>(0xC5));
+  CHECK_THROWS_WITH(
+      plugins::decode_draco(std::string_view(long_varint.data(), long_varint.size()), "long.drc"),
+      Catch::Contains("claims 1340080125 elements"));
   // Counts a file of that size can hold go on to the decoder (which rejects these bytes).
   const std::vector<char> small = claiming_edgebreaker(100, true);
   try {
