@@ -73,6 +73,10 @@ CheckedAttribute check_attribute(const draco::Mesh& mesh, const draco::PointAttr
   if (attribute->num_components() < components)
     throw bad("has " + std::to_string(attribute->num_components()) + " components, needs " +
               std::to_string(components));
+  // Draco would convert stored bytes to values by loading them as bool:
+  // undefined for any byte but 0 and 1 (fuzzer find). No mesh stores its
+  // positions, normals, uvs or colours as booleans.
+  if (attribute->data_type() == draco::DT_BOOL) throw bad("holds booleans, not numbers");
   const std::int64_t item = draco::DataTypeLength(attribute->data_type());
   const draco::DataBuffer* data = attribute->buffer();
   if (item <= 0 || !data || attribute->byte_stride() < item * attribute->num_components() ||
