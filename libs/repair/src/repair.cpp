@@ -74,12 +74,12 @@ void check_arguments(const TetMesh& mesh, std::span<const std::uint8_t> inside, 
 // position was left for its vertices. A closed input's output must stay
 // within epsilon of it, so there the input alone is the reference (faces
 // near the envelope's edge count as outside: trimesh/Duck went to 1.09 eps).
-TriangleSoup clean_up_reference(const TriangleSoup& peeled, const TriangleSoup& input,
+TriangleSoup clean_up_reference(const TriangleSoup& peeled, const TriangleSoup& input, bool input_closed,
                                 const envelope::Envelope& input_envelope) {
   TriangleSoup reference;
   reference.positions = input.positions;
   reference.triangles = input.triangles;
-  if (is_closed(input)) return reference;
+  if (input_closed) return reference;
   const std::vector<std::uint8_t> inside = input_envelope.are_inside(peeled);
   const Index offset = static_cast<Index>(reference.positions.size());
   reference.positions.insert(reference.positions.end(), peeled.positions.begin(), peeled.positions.end());
@@ -91,14 +91,14 @@ TriangleSoup clean_up_reference(const TriangleSoup& peeled, const TriangleSoup& 
   return reference;
 }
 
-TriangleSoup clean_up(const TriangleSoup& peeled, const TriangleSoup& input,
+TriangleSoup clean_up(const TriangleSoup& peeled, const TriangleSoup& input, bool input_closed,
                       const envelope::Envelope& envelope, const RepairOptions& options,
                       RepairResult& result) {
   simplify::SimplifyOptions simplify_options;
   simplify_options.epsilon_abs = options.epsilon;
   simplify_options.threads = options.threads;
   simplify::SimplifyResult simplified = simplify::simplify_in_envelope_of(
-      peeled, clean_up_reference(peeled, input, envelope), simplify_options);
+      peeled, clean_up_reference(peeled, input, input_closed, envelope), simplify_options);
   result.collapses = simplified.collapses;
   result.flips = simplified.flips;
   return std::move(simplified.soup);
@@ -113,6 +113,7 @@ RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::
   TetMesh work;
   work.positions = mesh.positions;
   work.tets = mesh.tets;
+  const bool input_closed = is_closed(input);  // welds the input: once
   std::unique_ptr<envelope::Envelope> envelope;
   if (!input.triangles.empty()) {
     envelope::EnvelopeOptions envelope_options;
@@ -123,7 +124,7 @@ RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::
     StageClock clock(result, "manifold");
     ManifoldFixOptions fix;
     fix.max_move = kMoveFraction * options.epsilon;
-    fix.collar_width = is_closed(input) ? kCollarFraction * options.epsilon : 0.0;
+    fix.collar_width = input_closed ? kCollarFraction * options.epsilon : 0.0;
     fix.max_rounds = options.max_manifold_rounds;
     result.manifold = make_boundary_manifold(work, inside, envelope.get(), fix);
   }
@@ -134,7 +135,7 @@ RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::
   }
   if (options.cleanup && !input.triangles.empty()) {
     StageClock clock(result, "cleanup");
-    result.surface = clean_up(result.surface, input, *envelope, options, result);
+    result.surface = clean_up(result.surface, input, input_closed, *envelope, options, result);
   }
   if (options.output_grid) {
     StageClock clock(result, "round");
