@@ -132,6 +132,32 @@ def quality_section(order, grouped, volume, epsilon):
     return "\n".join(["## Output quality", "", _table(header, rows), "", " ".join(notes)])
 
 
+
+def kept_input_section(order, grouped):
+    """meshrepair: how much of each output is input triangles kept as they were (--stats "provenance")."""
+    rows, shares = [], []
+    for tool in order:
+        for r in sorted(grouped.get(tool, []), key=lambda r: r["model"]):
+            p = (r.get("tool_stats") or {}).get("provenance")
+            if r["status"] != "ok" or not p:
+                continue
+            shares.append(p["kept_area_share"])
+            rows.append([f"`{r['model']}`", tool, (r["tool_stats"] or {}).get("path", ""), fmt(r.get("input_faces")),
+                         fmt(p["input_triangles_kept"]), f"{100 * p['kept_area_share']:.1f}%",
+                         fmt(p["recut_faces"]), fmt(p["filled_faces"])])
+    if not rows:
+        return ""
+    shares.sort()
+    median = shares[len(shares) // 2] if len(shares) % 2 else 0.5 * (shares[len(shares) // 2 - 1] + shares[len(shares) // 2])
+    return "\n".join([
+        "## Input kept", "",
+        f"Share of the output's area on input triangles kept as they were (corners bit for bit on the output "
+        f"grid): median {100 * median:.1f}% over {len(shares)} outputs. Recut: output faces within epsilon of an "
+        "input triangle; filled: farther from every input triangle (holes, gaps).", "",
+        _table(["model", "tool", "path", "input faces", "input faces kept", "kept area", "recut faces",
+                "filled faces"], rows)])
+
+
 def _distance_cells(q):
     return [f"{q['within_envelope']}/{q['distance_measured']}", fmt(q["median_hausdorff_rel"], 5),
             fmt(q["max_hausdorff_rel"], 5)]
@@ -288,6 +314,7 @@ def write(out_dir, meta, rows, baseline_rows, plot_names):
              success_section(order, grouped, tools_meta),
              ratio_section(order, grouped),
              quality_section(order, grouped, volume, (meta.get("runs") or [{}])[-1].get("epsilon", 1e-3)),
+             "" if volume else kept_input_section(order, grouped),
              "## Plots\n\n" + "\n\n".join(f"![{n}]({n})" for n in plot_names) if plot_names
              else "## Plots\n\nNo plots (matplotlib missing or nothing to plot).",
              baseline_section(baseline_rows, models, grouped, meta.get("corpus", "")),

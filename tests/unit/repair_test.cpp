@@ -456,7 +456,7 @@ TEST_CASE("meshrepair makes broken inputs watertight", "[repair][e2e][slow]") {
   }
 }
 
-TEST_CASE("meshrepair simplifies its input first unless told not to", "[repair][e2e][slow]") {
+TEST_CASE("meshrepair --remesh simplifies its input first unless told not to", "[repair][e2e][slow]") {
   const io::Registry registry = io::make_default_registry();
   test::TempDir dir("meshrepair_simplify");
   // A flat square plate, densely tessellated on its large faces.
@@ -485,8 +485,17 @@ TEST_CASE("meshrepair simplifies its input first unless told not to", "[repair][
     return std::int64_t{0};
   };
   const auto faces = static_cast<std::int64_t>(plate.triangles.size());
-  CHECK(simplify_faces({"--skip-simplify"}) == faces);
-  CHECK(simplify_faces({}) < faces / 2);
+  CHECK(simplify_faces({"--remesh", "--skip-simplify"}) == faces);
+  CHECK(simplify_faces({"--remesh"}) < faces / 2);
+  // Without --remesh a clean closed input is written back as it is.
+  const auto kept = dir / "kept.stl", kept_stats = dir / "kept.json";
+  REQUIRE(run_meshrepair({input.string(), kept.string(), "--stats", kept_stats.string(), "-q"}).exit_code ==
+          0);
+  std::ifstream kept_file(kept_stats);
+  const nlohmann::json j = nlohmann::json::parse(kept_file);
+  CHECK(j["path"] == "hole_fill");
+  CHECK(j["output"]["faces"] == faces);
+  CHECK(j["provenance"]["kept_area_share"] == 1.0);
 }
 
 TEST_CASE("meshrepair GLB output passes the Khronos validator", "[repair][e2e]") {

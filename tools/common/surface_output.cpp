@@ -29,7 +29,7 @@ std::optional<CoordinateGrid> finer_draco_grid(const io::Registry& registry, con
 
 SurfaceWrite write_watertight_surface(const io::Registry& registry, TriangleSoup surface,
                                       const std::string& path, io::WriteOptions options,
-                                      bool finer_draco_grid) {
+                                      bool finer_draco_grid, const SurfaceDressing& dress) {
   SurfaceWrite result;
   result.watertight = true;
   const Eigen::AlignedBox3d box = bounding_box(surface);
@@ -40,8 +40,9 @@ SurfaceWrite write_watertight_surface(const io::Registry& registry, TriangleSoup
     finer = [&](const CoordinateGrid& refused) {
       return tools::finer_draco_grid(registry, path, options, box.min(), box.max(), refused);
     };
-  result.rounding = repair::round_to_grid_or_finer(surface, grid, finer).stats;
-  io::write_surface(registry, surface, path, options,
+  const repair::GridRounding rounded = repair::round_to_grid_or_finer(surface, grid, finer);
+  result.rounding = rounded.stats;
+  io::write_surface(registry, dress ? dress(surface, rounded.grid) : surface, path, options,
                     check::watertight_file_check(registry, path, &result.written));
   return result;
 }

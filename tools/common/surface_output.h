@@ -5,6 +5,7 @@
 #include <mr/io/registry.h>
 #include <mr/repair/round_to_grid.h>
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -39,10 +40,15 @@ SurfaceWrite write_surface_keeping_watertight(const io::Registry& registry, Tria
                                               const std::string& path, io::WriteOptions options,
                                               bool finer_draco_grid = true);
 
+/// What is written for a surface rounded onto the output's grid: the
+/// surface itself, or a copy with more (e.g. attributes carried from the input).
+using SurfaceDressing = std::function<TriangleSoup(const TriangleSoup& rounded, const CoordinateGrid& grid)>;
+
 /// The same for a surface the caller knows to be watertight in doubles
-/// (no check before rounding; the written file is still checked).
+/// (no check before rounding; the written file is still checked); `dress`,
+/// when given, makes what is written from the rounded surface.
 SurfaceWrite write_watertight_surface(const io::Registry& registry, TriangleSoup surface,
                                       const std::string& path, io::WriteOptions options,
-                                      bool finer_draco_grid = true);
+                                      bool finer_draco_grid = true, const SurfaceDressing& dress = {});
 
 }  // namespace mr::tools

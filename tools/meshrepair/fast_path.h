@@ -5,6 +5,9 @@
 #include <mr/repair/repair.h>
 #include <mr/tetmesh/tetrahedralize.h>
 
+#include <cstddef>
+#include <optional>
+
 namespace mr::tools {
 
 /// The fast path needs a valid embedding, not well-shaped interior tets, so
@@ -12,15 +15,37 @@ namespace mr::tools {
 /// triangle cross many more tets (docs/ARCHITECTURE.md, "Repair").
 tetmesh::TetrahedralizeOptions repair_defaults();
 
+/// How much of the input the rebuild keeps.
+enum class RebuildMode {
+  /// Input triangles away from defects come out as they went in: only the
+  /// faces near defects are simplified before insertion, so that the peeled
+  /// faces tile the others' (snapped) triangles, which go back with their
+  /// own corners.
+  keep_input,
+  /// The whole surface rebuilt and simplified inside the envelope.
+  remesh,
+};
+
+/// Inputs up to this many faces keep their triangles by default; larger
+/// ones are rebuilt (--keep-input asks for it at any size): inserting a big
+/// input unsimplified costs minutes (docs/ARCHITECTURE.md, "Keeping the input").
+inline constexpr std::size_t kKeepInputMaxFaces = 50'000;
+
+/// The mode for an input of `faces` faces: `requested` when set (--remesh,
+/// --keep-input), else keep_input up to kKeepInputMaxFaces.
+RebuildMode rebuild_mode(std::size_t faces, std::optional<RebuildMode> requested);
+
 /// The tetrahedralization meshrepair runs: filtered by |winding number| > 1/2
 /// (a solid whose faces all point inward is repaired too; the peeled surface is
 /// oriented by the tets, so it comes out outward), rejected tets kept for the
 /// manifold fix, no quality improvement.
-tetmesh::PipelineOptions repair_pipeline_options(const tetmesh::TetrahedralizeOptions& tetrahedralize);
+tetmesh::PipelineOptions repair_pipeline_options(const tetmesh::TetrahedralizeOptions& tetrahedralize,
+                                                 RebuildMode mode);
 
-/// The surface repair's options for a pipeline's result; the output grids are the caller's.
+/// The surface repair's options for a pipeline's result (which must outlive
+/// them); the output grids are the caller's.
 repair::RepairOptions surface_repair_options(const tetmesh::PipelineResult& pipeline, int threads,
-                                             bool cleanup);
+                                             bool cleanup, RebuildMode mode);
 
 /// The tet labels as the surface repair takes them (1 = inside).
 std::vector<std::uint8_t> inside_labels(const tetmesh::PipelineResult& pipeline);

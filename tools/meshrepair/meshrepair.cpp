@@ -2,14 +2,18 @@
 #include "fast_path.h"
 #include "holes_only_repair.h"
 #include "memory_budget.h"
+#include "provenance_output.h"
 #include "repair_stats.h"
 #include "surface_input.h"
 #include "surface_output.h"
 
+#include <mr/check/provenance.h>
 #include <mr/check/written_file.h>
 #include <mr/cli/run_tool.h>
+#include <mr/core/errors.h>
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
+#include <mr/repair/attribute_transfer.h>
 #include <mr/repair/repair.h>
 #include <mr/tetmesh/tetrahedralize.h>
 
@@ -27,8 +31,9 @@ struct ToolOptions {
   io::WriteOptions write;
   std::optional<int> draco_position_bits;  ///< unset: chosen from epsilon
   bool cleanup = true;
-  bool remesh = false;  ///< rebuild the surface even when holes are all it lacks
+  std::optional<RebuildMode> rebuild;  ///< --remesh, --keep-input; unset: by the input's size
   std::string stats_path;
+  std::string provenance_path;
   std::size_t max_memory = cli::default_max_memory();
   bool quiet = false;
   bool verbose = false;
@@ -46,8 +51,10 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       "and gaps are filled). Fast path of the tetrahedralization: background mesh, exact insertion\n"
       "of the input, winding-number filter; then the boundary of the kept tets is made manifold by\n"
       "splitting vertices apart inside the solid (never leaving coincident vertices), peeled, and\n"
-      "cleaned up by collapses and flips inside the envelope of the original input. An input whose\n"
-      "only defects are holes keeps every face: its holes are closed by faired patches (hole-fill).";
+      "cleaned up by collapses and flips inside the envelope of the original input. Input triangles\n"
+      "away from defects come out as they went in (their corners bit for bit) on inputs of up to 50,000\n"
+      "faces, larger ones are rebuilt and simplified (--keep-input, --remesh choose). An input whose only\n"
+      "defects are holes keeps every face: its holes are closed by faired patches (hole-fill).";
   auto& t = o.tetrahedralize;
   spec.options = {
       {"--epsilon", "-e", "EPS", "envelope radius relative to the bbox diagonal (default 1e-3)",
@@ -63,12 +70,18 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        "(default 1e-3, at most 0.01; 0: insert the coordinates as they are)",
        [&](const std::string& v) { t.snap_fraction = cli::parse_double("--snap", v); }},
       {"--skip-simplify", "", "",
-       "insert the input as it is, without simplifying it inside the envelope first",
+       "with --remesh, insert the input as it is, without simplifying it inside the envelope first (without "
+       "--remesh it never is)",
        [&](const std::string&) { t.skip_simplify = true; }},
       {"--remesh", "", "",
-       "rebuild the whole surface through the tet mesh even when holes are its only defect (by default "
-       "those are filled and every input face is kept)",
-       [&](const std::string&) { o.remesh = true; }},
+       "rebuild the whole surface and simplify it inside the envelope (by default input triangles away "
+       "from defects are kept as they are on inputs of up to 50,000 faces, and an input whose only defects "
+       "are holes keeps every face)",
+       [&](const std::string&) { o.rebuild = RebuildMode::remesh; }},
+      {"--keep-input", "", "",
+       "keep the input triangles away from defects at any size (by default only up to 50,000 faces: above, "
+       "inserting them unsimplified can take many minutes)",
+       [&](const std::string&) { o.rebuild = RebuildMode::keep_input; }},
       {"--no-cleanup", "", "", "keep the peeled surface as it is (no collapses or flips)",
        [&](const std::string&) { o.cleanup = false; }},
       {"--draco", "", "", "compress GLB/glTF output with KHR_draco_mesh_compression (.drc is always Draco)",
@@ -78,6 +91,10 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        [&](const std::string& v) {
          o.draco_position_bits = cli::parse_int("--draco-position-bits", v, 1, 30);
        }},
+      {"--provenance", "", "FILE",
+       "write, as JSON, the input triangle each output face keeps or lies on (-1: filled where the input "
+       "had no surface), in the output's face order (not with Draco output, which reorders faces)",
+       [&](const std::string& v) { o.provenance_path = v; }},
       cli::ascii_option(o.write.binary),
       cli::stats_option(o.stats_path,
                         "write input defects, output figures (faces, genus, volume, Hausdorff distances both "
@@ -135,12 +152,44 @@ double epsilon_for(const TriangleSoup& input, const tetmesh::TetrahedralizeOptio
   return t.epsilon_abs > 0.0 ? t.epsilon_abs : t.epsilon_rel * bounding_box_diagonal(input);
 }
 
+// Where each output face came from, measured on the surface as rounded for
+// writing: the written file carries the input's attributes by it, the
+// --provenance file lists it, --stats and the summary line sum it up.
+struct OutputProvenance {
+  check::FaceProvenance faces;
+  check::ProvenanceSummary summary;
+};
+
+TriangleSoup dressed(const TriangleSoup& rounded, const CoordinateGrid& grid, const TriangleSoup& input,
+                     double epsilon, OutputProvenance& provenance) {
+  provenance.faces = check::face_provenance(rounded, input, grid, epsilon);
+  provenance.summary = check::summarize_provenance(provenance.faces, rounded);
+  return repair::with_input_attributes(rounded, input, provenance.faces.input_face, grid);
+}
+
+void write_provenance(const ToolOptions& options, const OutputProvenance& provenance) {
+  if (!options.provenance_path.empty()) write_provenance_file(options.provenance_path, provenance.faces);
+}
+
+// Draco reorders faces, so a face-order provenance would not match the file.
+void check_provenance_request(const ToolOptions& options, const io::Registry& registry,
+                              const std::string& out) {
+  if (options.provenance_path.empty()) return;
+  const CoordinateGrid grid =
+      io::surface_position_grid(registry, out, options.write, Vec3d::Zero(), Vec3d::Ones());
+  if (grid.kind() == CoordinateGrid::Kind::quantized)
+    throw UsageError(
+        "--provenance: " + out +
+        " is Draco-compressed, and Draco reorders faces; write GLB without --draco, or PLY, OBJ, STL");
+}
+
 // The holes-only path: its holes filled, the input written back with the
 // patches, checked as written. False (nothing written) when it declines.
 bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
                     const std::vector<std::string>& files, const TriangleSoup& input, double seconds_read,
                     std::string& declined, std::ostream& out) {
-  if (options.remesh) {
+  const RebuildMode mode = rebuild_mode(input.triangles.size(), options.rebuild);
+  if (options.rebuild == RebuildMode::remesh) {
     declined = "--remesh";
     return false;
   }
@@ -150,19 +199,24 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
   const double epsilon = epsilon_for(input, options.tetrahedralize);
   const CoordinateGrid grid =
       output_grid(registry, files[1], epsilon, options, write_options)(box.min(), box.max());
-  const HolesOnlyRepair holes = repair_holes_only(input, grid);
+  const HolesOnlyRepair holes = repair_holes_only(input, grid, mode == RebuildMode::keep_input);
   declined = holes.declined;
   if (!holes.fill) return false;
   const double seconds_fill = seconds_since(start);
   start = std::chrono::steady_clock::now();
+  OutputProvenance provenance;
   const SurfaceWrite written =  // repair_holes_only checked it watertight
       write_watertight_surface(registry, holes.fill->surface, files[1], write_options,
-                               !options.draco_position_bits);
+                               !options.draco_position_bits,
+                               [&](const TriangleSoup& rounded, const CoordinateGrid& rounded_grid) {
+                                 return dressed(rounded, rounded_grid, input, epsilon, provenance);
+                               });
   const double seconds_write = seconds_since(start) - written.written.seconds;
+  write_provenance(options, provenance);
   if (!options.stats_path.empty())
     cli::write_stats_file(options.stats_path,
-                          make_holes_only_stats({input, *holes.fill, written, epsilon, seconds_read,
-                                                 seconds_fill, seconds_write})
+                          make_holes_only_stats({input, *holes.fill, written, provenance.summary, epsilon,
+                                                 seconds_read, seconds_fill, seconds_write})
                               .dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << holes.fill->surface.triangles.size()
@@ -173,6 +227,7 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
 void run(const ToolOptions& options, const std::vector<std::string>& files, std::ostream& out,
          std::ostream& err) {
   const io::Registry registry = io::make_default_registry();
+  check_provenance_request(options, registry, files[1]);
   auto start = std::chrono::steady_clock::now();
   check_file_fits(files[0], options.max_memory);
   const TriangleSoup input = io::read_surface(registry, files[0]);
@@ -182,11 +237,12 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   std::string declined;
   if (try_holes_only(options, registry, files, input, seconds_read, declined, out)) return;
   if (options.verbose && !options.quiet) err << "meshrepair: rebuilding the surface (" << declined << ")\n";
+  const RebuildMode mode = rebuild_mode(input.triangles.size(), options.rebuild);
   const tetmesh::PipelineResult pipeline = tetmesh::tetrahedralize(
-      input, repair_pipeline_options(options.tetrahedralize), make_logger(options, err));
+      input, repair_pipeline_options(options.tetrahedralize, mode), make_logger(options, err));
 
   repair::RepairOptions repair_options =
-      surface_repair_options(pipeline, options.tetrahedralize.threads, options.cleanup);
+      surface_repair_options(pipeline, options.tetrahedralize.threads, options.cleanup, mode);
   io::WriteOptions write_options = options.write;
   repair_options.output_grid =
       output_grid(registry, files[1], pipeline.parameters.epsilon, options, write_options);
@@ -200,18 +256,23 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
 
   start = std::chrono::steady_clock::now();
   check::WrittenFileReport written;
-  io::write_surface(registry, repaired.surface, files[1], write_options,
-                    check::watertight_file_check(registry, files[1], &written));
+  OutputProvenance provenance;
+  io::write_surface(registry,
+                    dressed(repaired.surface, repaired.grid, input, pipeline.parameters.epsilon, provenance),
+                    files[1], write_options, check::watertight_file_check(registry, files[1], &written));
   const double seconds_write = seconds_since(start) - written.seconds;
+  write_provenance(options, provenance);
   if (!options.stats_path.empty())
-    cli::write_stats_file(options.stats_path, make_repair_stats({input, pipeline, repaired, written,
-                                                                 seconds_read, seconds_write, declined})
-                                                  .dump(2));
+    cli::write_stats_file(options.stats_path,
+                          make_repair_stats({input, pipeline, repaired, written, provenance.summary,
+                                             seconds_read, seconds_write, declined})
+                              .dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << repaired.surface.triangles.size()
         << " faces, watertight ("
         << repaired.manifold.nonmanifold_edges_found + repaired.manifold.nonmanifold_vertices_found
-        << " non-manifold spots resolved, epsilon " << pipeline.parameters.epsilon << ")\n";
+        << " non-manifold spots resolved, " << kept_phrase(provenance.summary) << ", epsilon "
+        << pipeline.parameters.epsilon << ")\n";
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 #include "repair_stats.h"
+#include "provenance_output.h"
 
 #include <mr/check/distance.h>
 #include <mr/check/surface_check.h>
@@ -76,6 +77,7 @@ nlohmann::json repair_figures(const repair::RepairResult& r) {
           {"manifold_fell_back", r.manifold.fell_back},
           {"fallback_added_tets", r.manifold.fallback_added_tets},
           {"peeled_faces", r.peeled_faces},
+          {"input_triangles_put_back", r.input_triangles_put_back},
           {"collapses", r.collapses},
           {"flips", r.flips},
           {"output_grid", r.grid.name()},
@@ -124,6 +126,7 @@ nlohmann::json make_repair_stats(const RepairRun& run) {
       {"kept_tets", std::count(run.pipeline.mesh.tet_labels.begin(), run.pipeline.mesh.tet_labels.end(), 1)},
       {"repair", repair_figures(run.repair)},
       {"output", output_figures(run.repair.surface, run.input)},
+      {"provenance", provenance_figures(run.provenance)},
       {"written_file", written_figures(run.written.surface)},
       {"stages", stage_seconds(run)}};
   stats["seconds_measuring"] =
@@ -152,6 +155,7 @@ nlohmann::json make_holes_only_stats(const HolesOnlyRun& run) {
        {{"rounded_vertices", run.written.rounding.moved},
         {"rounded_off_nearest", run.written.rounding.nearest_refused}}},
       {"output", output_figures(run.fill.surface, run.input)},
+      {"provenance", provenance_figures(run.provenance)},
       {"written_file", written_figures(run.written.written.surface)},
       {"stages",
        nlohmann::json::array({{{"name", "read"}, {"seconds", run.seconds_read}},

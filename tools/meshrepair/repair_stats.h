@@ -4,6 +4,7 @@
 
 #include "surface_output.h"
 
+#include <mr/check/provenance.h>
 #include <mr/check/written_file.h>
 #include <mr/core/triangle_soup.h>
 #include <mr/hole_fill/hole_fill.h>
@@ -19,6 +20,7 @@ struct RepairRun {
   const tetmesh::PipelineResult& pipeline;
   const repair::RepairResult& repair;
   const check::WrittenFileReport& written;
+  const check::ProvenanceSummary& provenance;
   double seconds_read = 0.0;
   double seconds_write = 0.0;
   std::string hole_fill_declined;  ///< why the holes-only path was not taken
@@ -31,6 +33,7 @@ struct HolesOnlyRun {
   const TriangleSoup& input;
   const hole_fill::HoleFillResult& fill;
   const SurfaceWrite& written;
+  const check::ProvenanceSummary& provenance;
   double epsilon = 0.0;  ///< the envelope the tetrahedral path would have used (sets Draco's bits)
   double seconds_read = 0.0;
   double seconds_fill = 0.0;

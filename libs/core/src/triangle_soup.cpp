@@ -45,6 +45,14 @@ void TriangleSoup::append(const TriangleSoup& other) {
   if (region_names.size() < other.region_names.size()) region_names.resize(other.region_names.size());
   for (std::size_t i = 0; i < other.region_names.size(); ++i)
     if (region_names[i].empty()) region_names[i] = other.region_names[i];
+  if (materials.empty() && !other.materials.empty()) {
+    const int image_offset = static_cast<int>(images.size());
+    for (Material m : other.materials) {
+      if (m.base_color_image >= 0) m.base_color_image += image_offset;
+      materials.push_back(std::move(m));
+    }
+    images.insert(images.end(), other.images.begin(), other.images.end());
+  }
 }
 
 std::string find_soup_inconsistency(const TriangleSoup& soup) {
@@ -62,6 +70,12 @@ std::string find_soup_inconsistency(const TriangleSoup& soup) {
         check_size(soup.colors, n, "colors"),
         check_size(soup.face_regions, soup.triangles.size(), "face regions")})
     if (!problem.empty()) return problem;
+  for (std::size_t m = 0; m < soup.materials.size(); ++m) {
+    const int image = soup.materials[m].base_color_image;
+    if (image < -1 || image >= static_cast<int>(soup.images.size()))
+      return "material " + std::to_string(m) + " refers to image " + std::to_string(image) +
+             " but there are " + std::to_string(soup.images.size()) + " images";
+  }
   return {};
 }
 

@@ -1,6 +1,7 @@
 #include <mr/repair/repair.h>
 
 #include "boundary_defects.h"
+#include "unbroken_triangles.h"
 
 #include <mr/core/boundary.h>
 #include <mr/core/errors.h>
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace mr::repair {
 namespace {
@@ -91,17 +93,42 @@ TriangleSoup clean_up_reference(const TriangleSoup& peeled, const TriangleSoup& 
   return reference;
 }
 
-TriangleSoup clean_up(const TriangleSoup& peeled, const TriangleSoup& input, bool input_closed,
-                      const envelope::Envelope& envelope, const RepairOptions& options,
+TriangleSoup clean_up(const TriangleSoup& peeled, std::vector<std::uint8_t> frozen, const TriangleSoup& input,
+                      bool input_closed, const envelope::Envelope& envelope, const RepairOptions& options,
                       RepairResult& result) {
   simplify::SimplifyOptions simplify_options;
   simplify_options.epsilon_abs = options.epsilon;
   simplify_options.threads = options.threads;
+  simplify_options.frozen_faces = std::move(frozen);
   simplify::SimplifyResult simplified = simplify::simplify_in_envelope_of(
       peeled, clean_up_reference(peeled, input, input_closed, envelope), simplify_options);
   result.collapses = simplified.collapses;
   result.flips = simplified.flips;
   return std::move(simplified.soup);
+}
+
+// How far a peeled vertex may lie from an input triangle and still count as
+// on it: cut points were rounded to doubles, a few units in the last place
+// of the coordinates; far below epsilon either way.
+double on_input_tolerance(const TriangleSoup& surface, double epsilon) {
+  double largest = 0.0;
+  for (const Vec3d& p : surface.positions) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  return std::max(1e-6 * epsilon, 64.0 * std::numeric_limits<double>::epsilon() * largest);
+}
+
+// The input triangles the peeled faces tile put back; flags the faces made
+// from them, which the clean-up must keep.
+std::vector<std::uint8_t> keep_input_triangles(const TriangleSoup& input, const RepairOptions& options,
+                                               RepairResult& result) {
+  const TriangleSoup& inserted = options.inserted_input ? *options.inserted_input : input;
+  detail::UnbrokenTriangles kept =
+      detail::put_back_unbroken_triangles(result.surface, inserted, input, options.inserted_snap_spacing,
+                                          on_input_tolerance(result.surface, options.epsilon));
+  result.surface = std::move(kept.surface);
+  result.input_triangles_put_back = kept.put_back;
+  std::vector<std::uint8_t> frozen(kept.origins.size());
+  for (std::size_t f = 0; f < frozen.size(); ++f) frozen[f] = kept.origins[f] != detail::FaceOrigin::peeled;
+  return frozen;
 }
 
 }  // namespace
@@ -133,9 +160,15 @@ RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::
     result.surface = extract_boundary(work);
     result.peeled_faces = result.surface.triangles.size();
   }
+  std::vector<std::uint8_t> frozen;
+  if (options.keep_input_triangles && !input.triangles.empty()) {
+    StageClock clock(result, "keep");
+    frozen = keep_input_triangles(input, options, result);
+  }
   if (options.cleanup && !input.triangles.empty()) {
     StageClock clock(result, "cleanup");
-    result.surface = clean_up(result.surface, input, input_closed, *envelope, options, result);
+    result.surface =
+        clean_up(result.surface, std::move(frozen), input, input_closed, *envelope, options, result);
   }
   if (options.output_grid) {
     StageClock clock(result, "round");

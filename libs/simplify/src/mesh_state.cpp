@@ -7,10 +7,10 @@
 namespace mr::simplify {
 
 MeshState::MeshState(const TriangleSoup& input, const TriangleSoup& welded,
-                     const DerivedTolerances& tolerances)
+                     const DerivedTolerances& tolerances, std::span<const std::uint8_t> frozen_faces)
     : tolerances_(tolerances) {
   build_mesh(welded);
-  lock_non_manifold_vertices();
+  lock_vertices(welded, frozen_faces);
   envelope::EnvelopeOptions envelope_options;
   envelope_options.epsilon = tolerances_.epsilon;
   envelope_ = envelope::make_envelope(input, envelope_options);
@@ -114,9 +114,13 @@ Corners MeshState::corners(TriMesh::FaceHandle f) const {
 }
 
 // Vertices of kept-aside faces stay where they are so those faces stay
-// attached; so do vertices whose faces do not form one fan.
-void MeshState::lock_non_manifold_vertices() {
+// attached; so do vertices whose faces do not form one fan, and those of
+// frozen faces.
+void MeshState::lock_vertices(const TriangleSoup& welded, std::span<const std::uint8_t> frozen_faces) {
   locked_.assign(mesh_.n_vertices(), 0);
+  for (std::size_t f = 0; f < frozen_faces.size(); ++f)
+    if (frozen_faces[f])
+      for (Index v : welded.triangles[f]) locked_[v] = 1;
   for (const Triangle& t : kept_aside_triangles_)
     for (Index v : t) locked_[v] = 1;
   for (auto v : mesh_.vertices())

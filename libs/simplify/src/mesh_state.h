@@ -18,6 +18,7 @@
 
 #include <array>
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace mr::simplify {
@@ -36,7 +37,10 @@ class MeshState {
  public:
   /// `welded` has bit-identical vertices merged; `input` is the original soup
   /// whose envelope bounds every changed triangle.
-  MeshState(const TriangleSoup& input, const TriangleSoup& welded, const DerivedTolerances& tolerances);
+  /// Vertices of the faces flagged in `frozen_faces` (empty, or one flag per
+  /// face of `welded`) never move: those faces come out as they went in.
+  MeshState(const TriangleSoup& input, const TriangleSoup& welded, const DerivedTolerances& tolerances,
+            std::span<const std::uint8_t> frozen_faces = {});
 
   TriMesh& mesh() { return mesh_; }
   const TriMesh& mesh() const { return mesh_; }
@@ -97,7 +101,7 @@ class MeshState {
   Vec3d point(TriMesh::VertexHandle v) const;
   Corners corners(TriMesh::FaceHandle f) const;
   void build_mesh(const TriangleSoup& welded);
-  void lock_non_manifold_vertices();
+  void lock_vertices(const TriangleSoup& welded, std::span<const std::uint8_t> frozen_faces);
   bool same_copies_around(TriMesh::VertexHandle v) const;
   void build_boundary_envelope();
   void build_grid();

@@ -51,7 +51,7 @@ SimplifyResult run(const TriangleSoup& surface, const TriangleSoup& reference, c
   auto start = std::chrono::steady_clock::now();
   TriangleSoup welded = weld_identical_vertices(surface);
   result.reoriented_faces = orient_coherently(welded).flipped;
-  MeshState state(reference, welded, tolerances);
+  MeshState state(reference, welded, tolerances, options.frozen_faces);
   result.kept_aside_faces = state.kept_aside_faces();
   result.duplicate_faces = state.duplicate_faces();
   result.locked_vertices = state.locked_vertices();
@@ -82,6 +82,9 @@ SimplifyResult simplify_in_envelope_of(const TriangleSoup& surface, const Triang
     throw UsageError("simplify: inconsistent input soup: " + problem);
   if (const std::string problem = find_soup_inconsistency(reference); !problem.empty())
     throw UsageError("simplify: inconsistent reference soup: " + problem);
+  if (!options.frozen_faces.empty() && options.frozen_faces.size() != surface.triangles.size())
+    throw UsageError("simplify: " + std::to_string(options.frozen_faces.size()) + " frozen-face flags for " +
+                     std::to_string(surface.triangles.size()) + " faces");
   const DerivedTolerances tolerances = derive_tolerances(reference, options);
   if (surface.triangles.empty()) {
     SimplifyResult result;

@@ -106,6 +106,19 @@ ClosestHit AabbTree::closest_within(const Vec3d& p, double max_distance) const {
   return hit;
 }
 
+std::vector<std::uint32_t> AabbTree::triangles_within(const Vec3d& p, double r) const {
+  std::vector<std::uint32_t> found;
+  if (!(r >= 0.0)) return found;
+  double bound_sq = r * r;  // never shrinks: every triangle that near counts
+  traverse(p, bound_sq, [&](std::uint32_t slot) {
+    const Vec3d* c = &corners_[3 * std::size_t{slot}];
+    if (squared_distance_to_triangle(p, c[0], c[1], c[2]) <= r * r) found.push_back(triangle_ids_[slot]);
+    return false;
+  });
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
 double AabbTree::squared_distance_bounded(const Vec3d& p, double accept_sq, double cap_sq) const {
   return nearest_bounded(p, accept_sq, cap_sq).squared_distance;
 }

@@ -1,5 +1,6 @@
 #include <mr/tetmesh/tetrahedralize.h>
 
+#include "defect_faces.h"
 #include "regions.h"
 #include "rounding_stage.h"
 
@@ -35,6 +36,14 @@ constexpr double kSimplifyEpsilonFraction = 0.8;
 // Improvement samples the envelope this much finer (see improvement_envelope).
 constexpr double kImprovementSamplingRefinement = 8.0;
 
+// How far around a defect the input is simplified when only the band
+// around defects is (simplify_near_defects_only), in vertex rings.
+constexpr int kDefectRings = 2;
+
+void count(StageTimer& timer, const char* key, std::size_t value) {
+  timer.stage().count(key, static_cast<std::int64_t>(value));
+}
+
 TriangleSoup simplified_input(const TriangleSoup& input, const PipelineOptions& options,
                               const DerivedParameters& derived, PipelineStats& stats, const Logger& logger) {
   StageTimer timer(stats, "simplify", logger);
@@ -45,14 +54,20 @@ TriangleSoup simplified_input(const TriangleSoup& input, const PipelineOptions& 
   simplify::SimplifyOptions simplify_options;
   simplify_options.epsilon_abs = kSimplifyEpsilonFraction * derived.epsilon;
   simplify_options.threads = options.tetrahedralize.threads;
+  if (options.tetrahedralize.simplify_near_defects_only) {
+    std::vector<std::uint8_t> near = detail::faces_near_defects(input, kDefectRings);
+    count(timer, "faces_near_defects", static_cast<std::size_t>(std::count(near.begin(), near.end(), 1)));
+    if (std::find(near.begin(), near.end(), 1) == near.end()) {
+      timer.stage().count("faces", static_cast<std::int64_t>(input.triangles.size()));
+      return input;
+    }
+    for (std::uint8_t& f : near) f = !f;
+    simplify_options.frozen_faces = std::move(near);
+  }
   simplify::SimplifyResult result = simplify::simplify_in_envelope(input, simplify_options);
   timer.stage().count("faces_before", static_cast<std::int64_t>(result.faces_before));
   timer.stage().count("faces", static_cast<std::int64_t>(result.faces_after));
   return std::move(result.soup);
-}
-
-void count(StageTimer& timer, const char* key, std::size_t value) {
-  timer.stage().count(key, static_cast<std::int64_t>(value));
 }
 
 // Embeddings to try before giving up: when some cut points cannot be
@@ -238,6 +253,7 @@ struct EmbeddedSurface {
   Mesh mesh;
   /// The surface as embedded (snapped); its triangles are the input's.
   TriangleSoup surface;
+  double snap_spacing = 0.0;
   /// Per triangle of `surface`, whether it had to be left out.
   std::vector<char> left_out;
 };
@@ -256,7 +272,7 @@ EmbeddedSurface embed_and_improve(const TriangleSoup& simplified, const SurfaceB
                                   const DerivedParameters& derived, const PipelineOptions& options,
                                   PipelineStats& stats, const Logger& logger) {
   double spacing = derived.snap_spacing;
-  EmbeddedSurface out{Mesh(), snapped_surface(simplified, spacing, stats, logger),
+  EmbeddedSurface out{Mesh(), snapped_surface(simplified, spacing, stats, logger), spacing,
                       std::vector<char>(simplified.triangles.size(), 0)};
   for (int attempt = 1;; ++attempt) {
     Embedding embedding = embed_once(out.surface, out.left_out, bounds, derived, options, stats, logger);
@@ -285,6 +301,7 @@ EmbeddedSurface embed_and_improve(const TriangleSoup& simplified, const SurfaceB
       logger.log(LogLevel::warning,
                  stuck + "with the surface snapped to a grid of 2^" + std::to_string(std::ilogb(spacing)));
       out.surface = snapped_surface(simplified, spacing, stats, logger);
+      out.snap_spacing = spacing;
     } else {
       logger.log(LogLevel::warning,
                  stuck + "without the " + std::to_string(newly_left_out) + " triangles that made them");
@@ -421,6 +438,8 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
       }
     }
     result.tracked_surface = detail::tracked_surface(mesh, keep, surface);
+    result.inserted_surface = surface;
+    result.snap_spacing = embedded.snap_spacing;
     const std::size_t bad = detail::count_non_positive_tets(result.mesh);
     if (bad != 0) {
       throw RunError(std::to_string(bad) +

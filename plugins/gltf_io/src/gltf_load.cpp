@@ -73,9 +73,12 @@ bool refuse_write(std::string* err, const std::string&, const std::vector<unsign
   return false;
 }
 
-// We never need pixels: images are accepted as they are, undecoded.
-bool ignore_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*,
-                  int, void*) {
+// We never need pixels: an image's bytes are kept as the file holds them
+// (PNG, JPEG), undecoded, so that a writer can hand them on.
+bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                        const unsigned char* bytes, int size, void*) {
+  image->as_is = true;
+  image->image.assign(bytes, bytes + std::max(size, 0));
   return true;
 }
 
@@ -129,7 +132,7 @@ tinygltf::Model load_model(std::string_view all, const std::filesystem::path& pa
 
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&file_exists, &expand_nothing, &read_whole_file, &refuse_write, nullptr});
-  loader.SetImageLoader(&ignore_image, nullptr);
+  loader.SetImageLoader(&keep_encoded_image, nullptr);
   const std::string base_dir = path.has_parent_path() ? path.parent_path().string() : std::string(".");
   tinygltf::Model model;
   std::string err, warn;

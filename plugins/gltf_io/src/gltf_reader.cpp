@@ -3,6 +3,7 @@
 #include "gltf_accessors.h"
 #include "gltf_draco.h"
 #include "gltf_load.h"
+#include "gltf_materials.h"
 #include "gltf_scene.h"
 #include "gltf_soup_builder.h"
 
@@ -114,7 +115,9 @@ class GltfReader {
     check_required_extensions(model_, path_);
     const std::vector<MeshInstance> instances = mesh_instances(model_, path_);
     for (std::size_t i = 0; i < instances.size(); ++i) add_instance(instances[i]);
-    return builder_.finish(material_names());
+    TriangleSoup soup = builder_.finish(material_names());
+    if (soup.has_face_regions()) read_materials(model_, path_, soup);
+    return soup;
   }
 
  private:

@@ -60,11 +60,16 @@ Index SoupBuilder::add_vertices(const TriangleSoup& piece, const Transform& tran
   } else {
     soup_.normals.clear();
   }
-  all_have_uvs_ = all_have_uvs_ && piece.has_uvs();
-  if (all_have_uvs_)
+  // A primitive without texture coordinates gets (0, 0): its material
+  // samples no texture through them (else the file is invalid), while the
+  // others keep theirs (CesiumMilkTruck's textured body beside its
+  // untextured windows).
+  if (piece.has_uvs() && !any_has_uvs_) soup_.uvs.assign(before, Vec2f::Zero());
+  any_has_uvs_ = any_has_uvs_ || piece.has_uvs();
+  if (piece.has_uvs())
     soup_.uvs.insert(soup_.uvs.end(), piece.uvs.begin(), piece.uvs.end());
-  else
-    soup_.uvs.clear();
+  else if (any_has_uvs_)
+    soup_.uvs.resize(after, Vec2f::Zero());
 
   if (piece.has_colors() && !any_has_colors_) soup_.colors.assign(before, opaque_white);
   any_has_colors_ = any_has_colors_ || piece.has_colors();

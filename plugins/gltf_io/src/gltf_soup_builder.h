@@ -44,7 +44,7 @@ class SoupBuilder {
   std::size_t limit_;
   TriangleSoup soup_;
   bool all_have_normals_ = true;
-  bool all_have_uvs_ = true;
+  bool any_has_uvs_ = false;
   bool any_has_colors_ = false;
   std::vector<int> face_materials_;
 };

@@ -4,6 +4,7 @@
 #include "glb_container.h"
 #include "gltf_buffer_builder.h"
 #include "gltf_draco.h"
+#include "gltf_materials.h"
 #include "gltf_vertex_data.h"
 
 #include <mr/core/errors.h>
@@ -38,7 +39,8 @@ json position_accessor(int view, std::size_t count, const FloatArrays& arrays) {
 
 class DocumentBuilder {
  public:
-  DocumentBuilder(const TriangleSoup& soup, const io::DracoOptions& draco) : soup_(soup), draco_(draco) {}
+  DocumentBuilder(const TriangleSoup& soup, const io::DracoOptions& draco)
+      : soup_(soup), draco_(draco), material_writer_(soup) {}
 
   json build() {
     json doc = {{"asset", {{"version", "2.0"}, {"generator", MR_GLTF_GENERATOR}}}, {"scene", 0}};
@@ -55,6 +57,7 @@ class DocumentBuilder {
     doc["nodes"] = json::array({{{"mesh", 0}}});
     doc["meshes"] = json::array({{{"primitives", primitives}}});
     if (!materials_.empty()) doc["materials"] = materials_;
+    material_writer_.finish(doc);
     if (draco_.compress_gltf) {
       doc["extensionsUsed"] = {draco_extension};
       doc["extensionsRequired"] = {draco_extension};
@@ -158,23 +161,17 @@ class DocumentBuilder {
       if (group.region >= 0)
         material_of_region_[group.region] = dense ? group.region : static_cast<int>(count++);
     if (dense) {
-      for (std::size_t i = 0; i < count; ++i) materials_.push_back(material(i));
+      for (std::size_t i = 0; i < count; ++i) materials_.push_back(material_writer_.material(i, buffer_));
     } else {
       for (const auto& [region, index] : material_of_region_)
-        materials_.push_back(material(static_cast<std::size_t>(region)));
+        materials_.push_back(material_writer_.material(static_cast<std::size_t>(region), buffer_));
     }
-  }
-
-  // JSON strings must be UTF-8: a Latin-1 name from an old OBJ would make the dump throw.
-  json material(std::size_t region) const {
-    const bool named = region < soup_.region_names.size() && !soup_.region_names[region].empty();
-    return {{"name", named ? io::as_utf8(soup_.region_names[region]) : "region_" + std::to_string(region)},
-            {"pbrMetallicRoughness", {{"metallicFactor", 0.0}}}};
   }
 
   const TriangleSoup& soup_;
   const io::DracoOptions& draco_;
   BufferBuilder buffer_;
+  MaterialWriter material_writer_;
   std::map<int, int> material_of_region_;
   json materials_ = json::array();
 };

@@ -3,6 +3,7 @@
 // input as it was read: non-manifold edges, duplicate and zero-area faces,
 // faces with repeated vertex indices and isolated vertices are all kept.
 
+#include <mr/core/material.h>
 #include <mr/core/types.h>
 
 #include <string>
@@ -23,6 +24,10 @@ struct TriangleSoup {
   std::vector<std::int32_t> face_regions;
   /// Optional names of regions, indexed by region id (e.g. glTF material names).
   std::vector<std::string> region_names;
+  /// Optional materials, indexed by region id like region_names (glTF), and
+  /// the images their textures use.
+  std::vector<Material> materials;
+  std::vector<EncodedImage> images;
 
   std::size_t num_vertices() const { return positions.size(); }
   std::size_t num_triangles() const { return triangles.size(); }
@@ -33,6 +38,7 @@ struct TriangleSoup {
 
   /// Appends `other`, offsetting its indices. Attributes present in only one
   /// of the two soups are dropped (a soup carries an attribute for all or none).
+  /// Materials are this soup's, or other's when this one has none.
   void append(const TriangleSoup& other);
 };
 

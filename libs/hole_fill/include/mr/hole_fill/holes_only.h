@@ -9,12 +9,13 @@
 namespace mr::hole_fill {
 
 /// Why `input`, welded by identical positions, has defects other than holes
-/// ("2 faces meet away from their shared vertices", "no hole", ...), or an
-/// empty string when holes are all it lacks to be watertight: it has border
-/// edges, no degenerate or repeated face, no edge of more than two faces,
+/// ("faces meet away from their shared vertices and edges", "no hole", ...),
+/// or an empty string when holes are all it lacks to be watertight (or,
+/// with `accept_closed`, it is watertight already): no degenerate or
+/// repeated face, no edge of more than two faces,
 /// two-face edges traversed both ways, and no two faces meet except in the
 /// vertices and edges they share (exact predicates). A vertex where the
 /// border pinches is allowed: filling both holes closes it.
-std::string defects_other_than_holes(const TriangleSoup& input);
+std::string defects_other_than_holes(const TriangleSoup& input, bool accept_closed = false);
 
 }  // namespace mr::hole_fill

@@ -3,7 +3,9 @@
 // from the tets the winding-number filter kept to a watertight surface.
 //   1. manifold fix: non-manifold edges and vertices of the tets' boundary
 //      are resolved geometrically (see manifold_fix.h);
-//   2. peel: the boundary of the tets, oriented outward;
+//   2. peel: the boundary of the tets, oriented outward; where the faces
+//      tile an input triangle exactly, the triangle goes back in their place
+//      (keep_input_triangles);
 //   3. clean-up: edge collapses and flips inside the envelope of the
 //      ORIGINAL input, vetoing any that leaves it or creates a
 //      self-intersection (mr::simplify::simplify_in_envelope_of);
@@ -32,6 +34,17 @@ struct RepairOptions {
   int threads = 0;
   /// Run the clean-up (collapses and flips inside the envelope).
   bool cleanup = true;
+  /// Put input triangles the tets did not need to change back as they were
+  /// (their corners bit for bit) and keep them through the clean-up, which
+  /// then simplifies only the faces around defects and over holes.
+  bool keep_input_triangles = false;
+  /// With keep_input_triangles: the input as the tets embed it, whose
+  /// triangles the peeled faces tile (input positions snapped onto a grid of
+  /// inserted_snap_spacing, 0: not snapped); null: the input itself. Must
+  /// outlive the call. The corners of the triangles put back go back to the
+  /// input's coordinates.
+  const TriangleSoup* inserted_input = nullptr;
+  double inserted_snap_spacing = 0.0;
   /// Upper bound on the rounds of the manifold fix.
   int max_manifold_rounds = 32;
   /// The grid the output file stores positions on, for a surface inside
@@ -57,13 +70,15 @@ struct RepairResult {
   TriangleSoup surface;
   ManifoldFixStats manifold;
   std::size_t peeled_faces = 0;  ///< faces of the boundary before the clean-up
+  /// Input triangles put back in place of the faces tiling them (keep_input_triangles).
+  std::size_t input_triangles_put_back = 0;
   std::size_t collapses = 0;
   std::size_t flips = 0;
   /// The grid the surface's positions lie on (the writer must use it).
   CoordinateGrid grid = CoordinateGrid::doubles();
   GridRoundingStats rounding;
   int finer_grids = 0;            ///< grids refused before `grid` (finer_output_grid)
-  std::vector<StageTime> stages;  ///< "manifold", "peel", "cleanup", "round", in order
+  std::vector<StageTime> stages;  ///< "manifold", "peel", "keep", "cleanup", "round", in order
 };
 
 /// Repairs the boundary of the solid made of the tets of `mesh` flagged in

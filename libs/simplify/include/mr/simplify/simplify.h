@@ -23,6 +23,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace mr::simplify {
 
@@ -43,6 +44,10 @@ struct SimplifyOptions {
   /// Worker threads for the parallel checks; 0 means all hardware threads.
   /// The output does not depend on it.
   int threads = 0;
+  /// Empty, or one flag per face of the surface: flagged faces come out as
+  /// they went in (their vertices never move; meshrepair's unbroken input
+  /// triangles). Collapses and flips change only the other faces.
+  std::vector<std::uint8_t> frozen_faces;
 };
 
 struct SimplifyResult {

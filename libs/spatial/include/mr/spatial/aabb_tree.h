@@ -51,6 +51,9 @@ class AabbTree {
   ClosestHit closest_within(const Vec3d& p, double max_distance) const;
   double squared_distance(const Vec3d& p) const { return closest(p).squared_distance; }
 
+  /// The triangles (soup indices, increasing) with a point at distance <= r from p.
+  std::vector<std::uint32_t> triangles_within(const Vec3d& p, double r) const;
+
   /// True when some triangle has a point at distance <= r from p. Stops at
   /// the first such triangle.
   bool any_within(const Vec3d& p, double r) const;

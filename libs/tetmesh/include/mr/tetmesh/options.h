@@ -44,6 +44,11 @@ struct TetrahedralizeOptions {
   static constexpr double kMaxSnapFraction = 0.01;
   /// Skip the input simplification stage.
   bool skip_simplify = false;
+  /// Simplify only the faces near defects (within two vertex rings of a
+  /// degenerate face, a face meeting another improperly, an edge of other
+  /// than two faces or of two disagreeing ones); the others are inserted as
+  /// they are, so that meshrepair can keep them.
+  bool simplify_near_defects_only = false;
   /// Worker threads; 0 means all hardware threads.
   int threads = 0;
 };

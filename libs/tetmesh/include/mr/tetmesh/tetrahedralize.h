@@ -36,6 +36,11 @@ struct PipelineResult {
   /// as (after improvement), restricted to the kept tets when filtering.
   /// Oriented as the input triangle it came from.
   TriangleSoup tracked_surface;
+  /// The surface as inserted: oriented, simplified unless skipped, snapped
+  /// onto a grid of `snap_spacing` (0: not snapped); its positions are
+  /// input positions so snapped, unless it was thickened.
+  TriangleSoup inserted_surface;
+  double snap_spacing = 0.0;
   DerivedParameters parameters;
   PipelineStats stats;
 };
