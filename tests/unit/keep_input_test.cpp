@@ -12,6 +12,8 @@
 #include <mr/repair/attribute_transfer.h>
 #include <mr/simplify/simplify.h>
 #include <mr/spatial/improper_meetings.h>
+#include <mr/tetmesh/insertion.h>
+#include <mr/tetmesh/tetrahedralize.h>
 
 #include <meshrepair.h>
 
@@ -353,10 +355,10 @@ TEST_CASE("meshrepair carries materials, their images and UVs from GLB to GLB", 
 
 TEST_CASE("faces meeting others improperly are found exactly", "[spatial][keep]") {
   TriangleSoup soup;
-  soup.positions = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0},                     // a
-                    {0.5, 0.5, -1}, {0.5, 0.5, 1}, {1.5, 0.2, 0},        // b crosses a
-                    {2, 0, 0}, {0, 2, 0}, {2, 2, 0},                      // c shares a's edge
-                    {5, 5, 5}, {6, 5, 5}, {5, 6, 5}};                     // d far away
+  soup.positions = {{0, 0, 0},      {2, 0, 0},     {0, 2, 0},      // a
+                    {0.5, 0.5, -1}, {0.5, 0.5, 1}, {1.5, 0.2, 0},  // b crosses a
+                    {2, 0, 0},      {0, 2, 0},     {2, 2, 0},      // c shares a's edge
+                    {5, 5, 5},      {6, 5, 5},     {5, 6, 5}};     // d far away
   soup.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 8, 7}, {9, 10, 11}};
   REQUIRE(spatial::faces_meeting_others(soup) == std::vector<std::uint8_t>{1, 1, 0, 0});
   // Only asked faces are tested; skipped ones are not tested against.
@@ -364,4 +366,12 @@ TEST_CASE("faces meeting others improperly are found exactly", "[spatial][keep]"
           std::vector<std::uint8_t>{0, 1, 0, 0});
   REQUIRE(spatial::faces_meeting_others(soup, {}, std::vector<std::uint8_t>{1, 0, 0, 0}) ==
           std::vector<std::uint8_t>{0, 0, 0, 0});
+}
+
+TEST_CASE("insertion stops past its tet budget", "[tetrahedralize][keep]") {
+  tetmesh::PipelineOptions options;
+  options.tetrahedralize.max_insertion_tets = 10;
+  REQUIRE_THROWS_AS(tetmesh::tetrahedralize(test::sphere(1.0, 2), options), tetmesh::InsertionTooCostly);
+  options.tetrahedralize.max_insertion_tets = 0;  // no limit
+  REQUIRE(!tetmesh::tetrahedralize(test::sphere(1.0, 2), options).mesh.tets.empty());
 }

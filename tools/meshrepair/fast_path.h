@@ -31,6 +31,13 @@ enum class RebuildMode {
 /// input unsimplified costs minutes (docs/ARCHITECTURE.md, "Keeping the input").
 inline constexpr std::size_t kKeepInputMaxFaces = 50'000;
 
+/// The tets keeping an input of `faces` faces may grow insertion to before
+/// meshrepair rebuilds it instead: 64 per face, plus room for small inputs.
+/// trimesh/Duck needs 4, CesiumMilkTruck 20, mode5 51; trimesh/boolean
+/// (202, every face near an intersection) and the CAD slivers of
+/// Generic_Twin (6.1M tets after 160 of its 19,670 triangles) are rebuilt.
+inline std::size_t keep_input_tet_budget(std::size_t faces) { return 64 * faces + 100'000; }
+
 /// The mode for an input of `faces` faces: `requested` when set (--remesh,
 /// --keep-input), else keep_input up to kKeepInputMaxFaces.
 RebuildMode rebuild_mode(std::size_t faces, std::optional<RebuildMode> requested);

@@ -15,6 +15,7 @@
 #include <mr/io/mesh_io.h>
 #include <mr/repair/attribute_transfer.h>
 #include <mr/repair/repair.h>
+#include <mr/tetmesh/insertion.h>
 #include <mr/tetmesh/tetrahedralize.h>
 
 #include <algorithm>
@@ -224,6 +225,26 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
   return true;
 }
 
+// The pipeline in `mode`; keeping the input gives way to rebuilding it
+// (mode becomes remesh) when its insertion grows past the tets it may
+// cost, unless --keep-input asked for it.
+tetmesh::PipelineResult tetrahedralize_for_repair(const ToolOptions& options, const TriangleSoup& input,
+                                                  RebuildMode& mode, std::ostream& err) {
+  tetmesh::PipelineOptions pipeline = repair_pipeline_options(options.tetrahedralize, mode);
+  if (mode == RebuildMode::keep_input && !options.rebuild)
+    pipeline.tetrahedralize.max_insertion_tets = keep_input_tet_budget(input.triangles.size());
+  try {
+    return tetmesh::tetrahedralize(input, pipeline, make_logger(options, err));
+  } catch (const tetmesh::InsertionTooCostly& e) {
+    if (!options.quiet)
+      err << "meshrepair: keeping the input triangles would cost too much (" << e.what()
+          << "); rebuilding the surface instead\n";
+    mode = RebuildMode::remesh;
+    return tetmesh::tetrahedralize(input, repair_pipeline_options(options.tetrahedralize, mode),
+                                   make_logger(options, err));
+  }
+}
+
 void run(const ToolOptions& options, const std::vector<std::string>& files, std::ostream& out,
          std::ostream& err) {
   const io::Registry registry = io::make_default_registry();
@@ -237,9 +258,8 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   std::string declined;
   if (try_holes_only(options, registry, files, input, seconds_read, declined, out)) return;
   if (options.verbose && !options.quiet) err << "meshrepair: rebuilding the surface (" << declined << ")\n";
-  const RebuildMode mode = rebuild_mode(input.triangles.size(), options.rebuild);
-  const tetmesh::PipelineResult pipeline = tetmesh::tetrahedralize(
-      input, repair_pipeline_options(options.tetrahedralize, mode), make_logger(options, err));
+  RebuildMode mode = rebuild_mode(input.triangles.size(), options.rebuild);
+  const tetmesh::PipelineResult pipeline = tetrahedralize_for_repair(options, input, mode, err);
 
   repair::RepairOptions repair_options =
       surface_repair_options(pipeline, options.tetrahedralize.threads, options.cleanup, mode);

@@ -121,6 +121,9 @@ InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input, std::span
       ++stats.merged;
     }
     if (i % report_every == 0) logger.progress("insertion", static_cast<double>(i) / static_cast<double>(n));
+    if (options.max_tets != 0 && mesh.num_tets() > options.max_tets)
+      throw InsertionTooCostly("insertion: more than " + std::to_string(options.max_tets) + " tets after " +
+                               std::to_string(i + 1) + " of " + std::to_string(n) + " triangles");
   }
   copies.mark(mesh);
   stats.copies = copies.count();

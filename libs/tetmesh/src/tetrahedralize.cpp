@@ -157,7 +157,10 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
   Mesh& mesh = embedding.mesh;
   {
     StageTimer timer(stats, "insertion", logger);
-    InsertionStats inserted = insert_triangles(mesh, surface, background.input_vertex, skip, logger);
+    InsertionOptions insertion;
+    insertion.max_tets = options.tetrahedralize.max_insertion_tets;
+    InsertionStats inserted =
+        insert_triangles(mesh, surface, background.input_vertex, skip, logger, insertion);
     count(timer, "triangles", inserted.inserted);
     count(timer, "degenerate_skipped", inserted.degenerate);
     count(timer, "copies", inserted.copies);

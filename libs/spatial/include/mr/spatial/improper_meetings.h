@@ -17,7 +17,8 @@ namespace mr::spatial {
 /// tested (empty: all); faces flagged in `skip` (empty: none) are neither
 /// tested nor tested against. Candidates come from a box grid; parallel,
 /// deterministic.
-std::vector<std::uint8_t> faces_meeting_others(const TriangleSoup& soup, std::span<const std::uint8_t> asked = {},
+std::vector<std::uint8_t> faces_meeting_others(const TriangleSoup& soup,
+                                               std::span<const std::uint8_t> asked = {},
                                                std::span<const std::uint8_t> skip = {});
 
 }  // namespace mr::spatial

@@ -5,6 +5,7 @@
 // touch or repeat are all handled by exact predicates on hybrid positions
 // (rational cut points, rounded to doubles wherever no tet inverts).
 
+#include <mr/core/errors.h>
 #include <mr/core/triangle_soup.h>
 #include <mr/tetmesh/logger.h>
 #include <mr/tetmesh/mesh.h>
@@ -48,6 +49,16 @@ struct InsertionOptions {
   /// between them are not cut into the mesh, and the polygon's faces carry
   /// the id of its first triangle only (see InsertionStats::marked_as).
   bool merge_coplanar = true;
+  /// When the mesh grows past this many tets, insertion stops with
+  /// InsertionTooCostly (0: no limit): a caller with a cheaper way (an
+  /// input simplified first) takes it instead of waiting.
+  std::size_t max_tets = 0;
+};
+
+/// Insertion passed InsertionOptions::max_tets.
+class InsertionTooCostly : public RunError {
+ public:
+  using RunError::RunError;
 };
 
 /// Inserts the triangles of `input` in order; the faces of triangle i are

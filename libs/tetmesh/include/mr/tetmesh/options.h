@@ -49,6 +49,8 @@ struct TetrahedralizeOptions {
   /// than two faces or of two disagreeing ones); the others are inserted as
   /// they are, so that meshrepair can keep them.
   bool simplify_near_defects_only = false;
+  /// Insertion stops with InsertionTooCostly past this many tets (0: never).
+  std::size_t max_insertion_tets = 0;
   /// Worker threads; 0 means all hardware threads.
   int threads = 0;
 };
