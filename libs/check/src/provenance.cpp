@@ -33,18 +33,13 @@ struct CornerSetHash {
   }
 };
 
-std::array<Vec3d, 3> corners(const TriangleSoup& soup, std::size_t f) {
-  const Triangle& t = soup.triangles[f];
-  return {soup.positions[t[0]], soup.positions[t[1]], soup.positions[t[2]]};
-}
-
 // Input triangles by their corners on the grid; the first of equal ones.
 std::unordered_map<CornerSet, std::int64_t, CornerSetHash> input_by_corners(const TriangleSoup& input,
                                                                             const CoordinateGrid& grid) {
   std::unordered_map<CornerSet, std::int64_t, CornerSetHash> by_corners;
   by_corners.reserve(input.triangles.size());
   for (std::size_t f = 0; f < input.triangles.size(); ++f) {
-    const std::array<Vec3d, 3> p = corners(input, f);
+    const std::array<Vec3d, 3> p = input.corners(f);
     by_corners.emplace(corner_set(grid.nearest(p[0]), grid.nearest(p[1]), grid.nearest(p[2])),
                        static_cast<std::int64_t>(f));
   }
@@ -61,7 +56,7 @@ FaceProvenance face_provenance(const TriangleSoup& output, const TriangleSoup& i
   provenance.input_face.assign(output.triangles.size(), -1);
   provenance.source.assign(output.triangles.size(), FaceSource::filled);
   tbb::parallel_for(std::size_t(0), output.triangles.size(), [&](std::size_t f) {
-    const std::array<Vec3d, 3> p = corners(output, f);
+    const std::array<Vec3d, 3> p = output.corners(f);
     if (const auto it = by_corners.find(corner_set(p[0], p[1], p[2])); it != by_corners.end()) {
       provenance.input_face[f] = it->second;
       provenance.source[f] = FaceSource::kept;
@@ -84,7 +79,7 @@ ProvenanceSummary summarize_provenance(const FaceProvenance& provenance, const T
   ProvenanceSummary summary;
   std::vector<std::int64_t> kept;
   for (std::size_t f = 0; f < output.triangles.size(); ++f) {
-    const std::array<Vec3d, 3> p = corners(output, f);
+    const std::array<Vec3d, 3> p = output.corners(f);
     const double area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
     switch (provenance.source[f]) {
       case FaceSource::kept:

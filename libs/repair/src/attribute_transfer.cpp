@@ -23,15 +23,10 @@ struct Anchor {
   std::array<double, 3> weights{1.0, 0.0, 0.0};
 };
 
-std::array<Vec3d, 3> corners(const TriangleSoup& soup, std::size_t f) {
-  const Triangle& t = soup.triangles[f];
-  return {soup.positions[t[0]], soup.positions[t[1]], soup.positions[t[2]]};
-}
-
 // Barycentric weights of p's closest point on triangle `t` of `input`;
 // exactly one corner's when p is that corner on the grid.
 Anchor anchor_on(const TriangleSoup& input, std::uint32_t t, const Vec3d& p, const CoordinateGrid& grid) {
-  const std::array<Vec3d, 3> c = corners(input, t);
+  const std::array<Vec3d, 3> c = input.corners(t);
   for (int i = 0; i < 3; ++i)
     if (grid.nearest(c[i]) == p) {
       Anchor exact{t, {0.0, 0.0, 0.0}};
@@ -126,7 +121,7 @@ std::uint32_t anchor_triangle(const spatial::AabbTree& tree, const TriangleSoup&
                               const Vec3d& face_normal, std::int64_t source, const CoordinateGrid& grid,
                               double hair) {
   if (source >= 0) {
-    const std::array<Vec3d, 3> c = corners(input, static_cast<std::size_t>(source));
+    const std::array<Vec3d, 3> c = input.corners(static_cast<std::size_t>(source));
     for (const Vec3d& q : c)
       if (grid.nearest(q) == p) return static_cast<std::uint32_t>(source);
   }
@@ -134,7 +129,7 @@ std::uint32_t anchor_triangle(const spatial::AabbTree& tree, const TriangleSoup&
   std::uint32_t best = nearest.triangle;
   double best_alignment = -2.0;
   for (std::uint32_t t : tree.triangles_within(p, std::sqrt(nearest.squared_distance) + hair)) {
-    const std::array<Vec3d, 3> c = corners(input, t);
+    const std::array<Vec3d, 3> c = input.corners(t);
     const Vec3d n = (c[1] - c[0]).cross(c[2] - c[0]);
     const double alignment = n.norm() > 0.0 ? n.normalized().dot(face_normal) : -1.0;
     if (alignment > best_alignment) best = t, best_alignment = alignment;
@@ -159,7 +154,7 @@ TriangleSoup with_input_attributes(const TriangleSoup& surface, const TriangleSo
   const double hair = 1e-9 * bounding_box_diagonal(input);
   std::vector<CornerValues> values(3 * surface.triangles.size());
   tbb::parallel_for(std::size_t(0), surface.triangles.size(), [&](std::size_t f) {
-    const std::array<Vec3d, 3> c = corners(surface, f);
+    const std::array<Vec3d, 3> c = surface.corners(f);
     const Vec3d n = (c[1] - c[0]).cross(c[2] - c[0]);
     const Vec3d normal = n.norm() > 0.0 ? Vec3d(n.normalized()) : Vec3d::Zero();
     for (int i = 0; i < 3; ++i) {

@@ -26,11 +26,6 @@ constexpr int kValidationRounds = 4;
 // from its own (rounded cut points); a fold or a gap is far larger.
 constexpr double kAreaTolerance = 1e-6;
 
-std::array<Vec3d, 3> corners_of(const TriangleSoup& soup, std::size_t f) {
-  const Triangle& t = soup.triangles[f];
-  return {soup.positions[t[0]], soup.positions[t[1]], soup.positions[t[2]]};
-}
-
 // Per peeled face, the input triangle nearest its centroid when all three
 // of its corners are within `tolerance` of it; kNone otherwise.
 std::vector<std::uint32_t> owners_of(const TriangleSoup& peeled, const TriangleSoup& input,
@@ -38,10 +33,10 @@ std::vector<std::uint32_t> owners_of(const TriangleSoup& peeled, const TriangleS
   const spatial::AabbTree tree(input);
   std::vector<std::uint32_t> owners(peeled.triangles.size(), kNone);
   tbb::parallel_for(std::size_t(0), peeled.triangles.size(), [&](std::size_t f) {
-    const std::array<Vec3d, 3> p = corners_of(peeled, f);
+    const std::array<Vec3d, 3> p = peeled.corners(f);
     const spatial::ClosestHit hit = tree.closest_within((p[0] + p[1] + p[2]) / 3.0, tolerance);
     if (!hit.found()) return;
-    const std::array<Vec3d, 3> t = corners_of(input, hit.triangle);
+    const std::array<Vec3d, 3> t = input.corners(hit.triangle);
     for (const Vec3d& q : p)
       if (spatial::squared_distance_to_triangle(q, t[0], t[1], t[2]) > tolerance * tolerance) return;
     owners[f] = hit.triangle;
@@ -127,7 +122,7 @@ bool covers_once(const TriangleSoup& surface, std::span<const Index> faces, cons
   const Vec3d unit = normal / area;
   double sum = 0.0, absolute = 0.0;
   for (Index f : faces) {
-    const std::array<Vec3d, 3> p = corners_of(surface, f);
+    const std::array<Vec3d, 3> p = surface.corners(f);
     const double projected = (p[1] - p[0]).cross(p[2] - p[0]).dot(unit);
     sum += projected;
     absolute += std::abs(projected);
@@ -138,7 +133,7 @@ bool covers_once(const TriangleSoup& surface, std::span<const Index> faces, cons
 
 std::optional<Tiling> tiling_of(const TriangleSoup& peeled, const TriangleSoup& input, const Group& group,
                                 double tolerance) {
-  const std::array<Vec3d, 3> t = corners_of(input, group.triangle);
+  const std::array<Vec3d, 3> t = input.corners(group.triangle);
   if (!covers_once(peeled, group.faces, t)) return std::nullopt;
   std::optional<std::vector<Index>> rim = rim_of_disk(peeled, group.faces);
   if (!rim) return std::nullopt;

@@ -13,15 +13,10 @@
 namespace mr::tetmesh::detail {
 namespace {
 
-std::array<Vec3d, 3> corners(const TriangleSoup& soup, std::size_t f) {
-  const Triangle& t = soup.triangles[f];
-  return {soup.positions[t[0]], soup.positions[t[1]], soup.positions[t[2]]};
-}
-
 void flag_degenerate(const TriangleSoup& welded, std::vector<std::uint8_t>& flags) {
   for (std::size_t f = 0; f < welded.triangles.size(); ++f) {
     const Triangle& t = welded.triangles[f];
-    const std::array<Vec3d, 3> p = corners(welded, f);
+    const std::array<Vec3d, 3> p = welded.corners(f);
     if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0] || collinear(p[0], p[1], p[2])) flags[f] = 1;
   }
 }

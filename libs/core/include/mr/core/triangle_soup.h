@@ -6,6 +6,7 @@
 #include <mr/core/material.h>
 #include <mr/core/types.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,11 @@ struct TriangleSoup {
   bool has_uvs() const { return !uvs.empty(); }
   bool has_colors() const { return !colors.empty(); }
   bool has_face_regions() const { return !face_regions.empty(); }
+  /// The positions of the corners of triangle f.
+  std::array<Vec3d, 3> corners(std::size_t f) const {
+    const Triangle& t = triangles[f];
+    return {positions[t[0]], positions[t[1]], positions[t[2]]};
+  }
 
   /// Appends `other`, offsetting its indices. Attributes present in only one
   /// of the two soups are dropped (a soup carries an attribute for all or none).
