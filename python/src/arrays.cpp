@@ -91,6 +91,25 @@ py::array_t<std::int64_t> cells_to_array(const std::vector<std::array<Index, K>>
 
 }  // namespace
 
+std::vector<std::int32_t> regions_from_array(const py::handle& object, std::size_t faces) {
+  const py::array a = py::array::ensure(object);
+  if (!a || std::string("iu").find(a.dtype().kind()) == std::string::npos || a.ndim() != 1)
+    throw py::value_error("face_regions must be a 1-D array of integers");
+  if (static_cast<std::size_t>(a.shape(0)) != faces)
+    throw py::value_error("face_regions has " + std::to_string(a.shape(0)) + " entries for " +
+                          std::to_string(faces) + " faces");
+  const auto values = py::array_t<std::int64_t, py::array::forcecast>::ensure(a);
+  const auto r = values.unchecked<1>();
+  std::vector<std::int32_t> regions(faces);
+  for (py::ssize_t i = 0; i < r.shape(0); ++i) {
+    if (r(i) < 0 || r(i) > std::numeric_limits<std::int32_t>::max() - 1)
+      throw py::value_error("face_regions[" + std::to_string(i) + "] = " + std::to_string(r(i)) +
+                            " is not a region id (0 to 2^31 - 2)");
+    regions[i] = static_cast<std::int32_t>(r(i));
+  }
+  return regions;
+}
+
 TriangleSoup soup_from_arrays(const ArrayLike& vertices, const ArrayLike& faces) {
   TriangleSoup soup;
   soup.positions = checked_positions(vertices.object);

@@ -28,6 +28,9 @@ py::tuple soup_to_arrays(const TriangleSoup& soup);
 /// (vertices, tets).
 py::tuple tet_mesh_to_arrays(const TetMesh& mesh);
 
+/// One int32 region id per face from a 1-D integer array of `faces` entries.
+std::vector<std::int32_t> regions_from_array(const py::handle& object, std::size_t faces);
+
 /// The per-tet labels as an int32 array.
 py::array_t<std::int32_t> labels_to_array(const std::vector<std::int32_t>& labels);
 

@@ -51,8 +51,12 @@ Args:
     snap: snap the input to a grid of snap * epsilon before inserting it (0: none).
     skip_simplify: insert the input as it is, without simplifying it first.
     threads: worker threads; 0 uses all hardware threads.
-    return_labels: also return the int32 label of each tet (1 inside with the
-        filter; the region without it).
+    face_regions: optional int array, one region id per face (e.g. a material).
+    labels: how kept tets are labelled: "auto" (by face region when there
+        are several, else 1), "regions", "components" (connected parts of
+        the input), "winding" (nesting depth) or "none".
+    return_labels: also return the int32 label of each tet (its part's with
+        the filter, region id + 1 for face regions; the region without it).
 
 Returns:
     (vertices, tets), or (vertices, tets, labels) with return_labels: float64
@@ -72,8 +76,11 @@ void bind_tetrahedralize(py::module_& m) {
       [](const ArrayLike& vertices, const ArrayLike& faces, double epsilon, double epsilon_abs,
          double edge_length, double edge_length_abs, double lattice, double lattice_clearance,
          double stop_energy, int max_passes, bool positive_winding, bool filter, double snap,
-         bool skip_simplify, int threads, bool return_labels) -> py::tuple {
-        const TriangleSoup input = soup_from_arrays(vertices, faces);
+         bool skip_simplify, int threads, const py::object& face_regions, const std::string& labels,
+         bool return_labels) -> py::tuple {
+        TriangleSoup input = soup_from_arrays(vertices, faces);
+        if (!face_regions.is_none())
+          input.face_regions = regions_from_array(face_regions, input.triangles.size());
         tetmesh::PipelineOptions options;
         tetmesh::TetrahedralizeOptions& t = options.tetrahedralize;
         t.epsilon_rel = epsilon;
@@ -90,6 +97,7 @@ void bind_tetrahedralize(py::module_& m) {
         t.threads = checked_threads(threads);
         options.improve = max_passes > 0;
         options.filter = filter;
+        options.labels = tetmesh::tet_labels_named(labels);
         const TetMesh mesh = without_gil([&] {
           tetmesh::PipelineResult result = tetmesh::tetrahedralize(input, options);
           check_output(result.mesh);
@@ -105,7 +113,8 @@ void bind_tetrahedralize(py::module_& m) {
       py::arg("lattice_clearance") = d.lattice_clearance_rel, py::arg("stop_energy") = d.stop_energy,
       py::arg("max_passes") = d.max_passes, py::arg("positive_winding") = false, py::arg("filter") = true,
       py::arg("snap") = d.snap_fraction, py::arg("skip_simplify") = d.skip_simplify,
-      py::arg("threads") = d.threads, py::arg("return_labels") = false);
+      py::arg("threads") = d.threads, py::arg("face_regions") = py::none(), py::arg("labels") = "auto",
+      py::arg("return_labels") = false);
 }
 
 }  // namespace mr::python

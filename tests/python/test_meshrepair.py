@@ -94,6 +94,31 @@ def test_tetrahedralize_returns_labels(cube):
     assert labels.shape == (len(tets),) and np.all(labels == 1)
 
 
+def test_tetrahedralize_labels_tets_by_face_region(cube):
+    vertices, faces = cube
+    right = np.asarray(vertices, dtype=float) + [1.0, 0.0, 0.0]
+    both = np.vstack([vertices, right])
+    all_faces = np.vstack([faces, np.asarray(faces) + len(vertices)])
+    regions = np.repeat([0, 1], len(faces))
+    v, t, labels = meshrepair.tetrahedralize(both, all_faces, face_regions=regions, max_passes=0,
+                                             return_labels=True)
+    # Slivers on the interface (no improvement) have centroids within
+    # rounding of x = 1: judged by their volume below, not their side.
+    centroid_x = v[t].mean(axis=1)[:, 0]
+    clear = np.abs(centroid_x - 1.0) > 1e-9
+    assert np.array_equal(labels[clear], np.where(centroid_x[clear] < 1.0, 1, 2))
+    volumes = tet_volumes(v, t)
+    assert volumes[labels == 1].sum() == pytest.approx(1.0, abs=1e-9)
+    assert volumes[labels == 2].sum() == pytest.approx(1.0, abs=1e-9)
+    _, _, plain = meshrepair.tetrahedralize(both, all_faces, face_regions=regions, labels="none",
+                                            max_passes=0, return_labels=True)
+    assert np.all(plain == 1)
+    with pytest.raises(ValueError, match="face_regions"):
+        meshrepair.tetrahedralize(both, all_faces, face_regions=regions[:3])
+    with pytest.raises(ValueError, match="labels"):
+        meshrepair.tetrahedralize(both, all_faces, labels="materials")
+
+
 def test_check_tets_finds_inverted_tet():
     vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
     good = meshrepair.check_tets(vertices, [[0, 1, 2, 3]])

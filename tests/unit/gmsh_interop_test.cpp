@@ -1,8 +1,11 @@
 // Interoperability with the real gmsh and meshio: gmsh loads what we write,
 // we read what gmsh writes, and meshio loads our .vtu. These tools are
-// installed by the setup script; a missing tool fails the test loudly.
+// installed by the setup script; a missing tool fails the test loudly. Part
+// labels written by tetrahedralize come back as physical groups and names.
 
 #include "test_support.h"
+
+#include "tetrahedralize.h"
 
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
@@ -10,7 +13,9 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -213,5 +218,72 @@ TEST_CASE("meshio loads the .vtu we write", "[gmsh]") {
     CHECK(connectivity == connectivity_sum);
     CHECK(coordinate_sum == Approx(grid_coordinate_sum).epsilon(1e-12));
     CHECK(labels == label_sum);
+  }
+}
+
+TEST_CASE("gmsh and meshio read the part labels tetrahedralize writes", "[gmsh][labels]") {
+  require_gmsh();
+  const std::string python = python_with_meshio();
+  INFO("no python3 with meshio found: install python3-meshio (see the setup script)");
+  REQUIRE(!python.empty());
+  test::TempDir dir("gmsh_labels");
+  const io::Registry registry = io::make_default_registry();
+  // Two unit boxes touching on x = 1, one OBJ material each.
+  TriangleSoup boxes = test::cube_soup();
+  TriangleSoup right = test::cube_soup();
+  for (Vec3d& p : right.positions) p.x() += 1;
+  boxes.face_regions.assign(boxes.triangles.size(), 0);
+  right.face_regions.assign(right.triangles.size(), 1);
+  boxes.append(right);
+  boxes.region_names = {"steel", "rubber"};
+  io::write_surface(registry, boxes, dir / "boxes.obj");
+  for (const char* out : {"boxes.msh", "boxes.vtu"}) {
+    const test::ToolRun made =
+        test::run_tool(tools::tetrahedralize,
+                       {(dir / "boxes.obj").string(), (dir / out).string(), "--max-passes", "4", "-q"});
+    INFO(made.err);
+    REQUIRE(made.exit_code == 0);
+  }
+
+  // meshio: the physical tag of every tet, and the group names.
+  const CommandResult read =
+      run(python +
+          " -c 'import sys, meshio; m = meshio.read(sys.argv[1]); "
+          "tags = sorted(set(int(v) for c, d in zip(m.cells, m.cell_data[\"gmsh:physical\"]) if c.type == "
+          "\"tetra\" "
+          "for v in d)); "
+          "names = sorted((int(v[0]), k) for k, v in m.field_data.items() if int(v[1]) == 3); "
+          "v = meshio.read(sys.argv[2]); "
+          "print(tags, names, sorted(set(int(x) for a in v.cell_data[\"label\"] for x in a)))' " +
+          quote(dir / "boxes.msh") + " " + quote(dir / "boxes.vtu"));
+  INFO(read.output);
+  REQUIRE(read.status == 0);
+  CHECK(read.output.find("[1, 2] [(1, 'steel'), (2, 'rubber')] [1, 2]\n") != std::string::npos);
+
+  // gmsh: loads the mesh and saves it again; the labels come back per box.
+  const std::filesystem::path resaved = dir / "resaved.msh";
+  const CommandResult result =
+      gmsh(quote(dir / "boxes.msh") + " -0 -save_all -o " + quote(resaved) + " -format msh41");
+  INFO(result.output);
+  REQUIRE(result.status == 0);
+  const auto volume_per_label = [](const TetMesh& mesh) {
+    std::map<std::int32_t, double> volumes;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+      const Tet& c = mesh.tets[t];
+      const double x =
+          (mesh.positions[c[0]] + mesh.positions[c[1]] + mesh.positions[c[2]] + mesh.positions[c[3]]).x() / 4;
+      if (std::abs(x - 1) > 1e-9) CHECK(mesh.tet_labels[t] == (x < 1 ? 1 : 2));  // slivers: by volume
+      volumes[mesh.tet_labels[t]] += signed_volume(mesh, c);
+    }
+    return volumes;
+  };
+  const std::map<std::int32_t, double> ours = volume_per_label(io::read_volume(registry, dir / "boxes.msh"));
+  const std::map<std::int32_t, double> back = volume_per_label(io::read_volume(registry, resaved));
+  REQUIRE(ours.size() == 2);
+  REQUIRE(back.size() == 2);
+  for (std::int32_t label : {1, 2}) {
+    CHECK(back.at(label) == Approx(ours.at(label)).epsilon(1e-12));
+    // Improvement moves the surface within epsilon (1e-3 of the diagonal, sqrt 6).
+    CHECK(ours.at(label) == Approx(1.0).margin(6 * 1e-3 * std::sqrt(6.0)));
   }
 }

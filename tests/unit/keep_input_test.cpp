@@ -297,7 +297,8 @@ TEST_CASE("attributes follow each face from the input triangle it came from", "[
                     UsageError);
 }
 
-TEST_CASE("meshrepair carries materials, their images and UVs from GLB to GLB", "[repair][keep][e2e]") {
+TEST_CASE("meshrepair carries materials, their images and UVs from GLB and OBJ+MTL to GLB",
+          "[repair][keep][e2e]") {
   const io::Registry registry = io::make_default_registry();
   const test::TempDir dir("meshrepair_materials");
   // Two overlapping boxes, one textured (a 2x2 PNG), one plain red.
@@ -321,11 +322,17 @@ TEST_CASE("meshrepair carries materials, their images and UVs from GLB to GLB", 
   input.materials[1].name = "red";
   input.materials[1].base_color = {0.8f, 0.1f, 0.1f, 1.0f};
   input.materials[1].double_sided = true;
-  io::write_surface(registry, input, dir / "in.glb");
+  const std::string in = GENERATE(as<std::string>(), "in.glb", "in.obj");
+  CAPTURE(in);
+  io::write_surface(registry, input, dir / in);
+  if (in == "in.obj") {  // the library and texture beside the file, named after it
+    REQUIRE(std::filesystem::exists(dir / "in.mtl"));
+    REQUIRE(std::filesystem::exists(dir / "in_0.png"));
+  }
 
-  const test::ToolRun run = test::run_tool(
-      tools::meshrepair,
-      {(dir / "in.glb").string(), (dir / "out.glb").string(), "--stats", (dir / "s.json").string()});
+  const test::ToolRun run =
+      test::run_tool(tools::meshrepair,
+                     {(dir / in).string(), (dir / "out.glb").string(), "--stats", (dir / "s.json").string()});
   INFO(run.err);
   REQUIRE(run.exit_code == 0);
   REQUIRE(read_json(dir / "s.json")["path"] == "tetrahedralize");
@@ -337,7 +344,7 @@ TEST_CASE("meshrepair carries materials, their images and UVs from GLB to GLB", 
   REQUIRE(output.images[static_cast<std::size_t>(output.materials[0].base_color_image)].mime_type ==
           "image/png");
   REQUIRE(output.materials[1].base_color == input.materials[1].base_color);
-  REQUIRE(output.materials[1].double_sided);
+  REQUIRE(output.materials[1].double_sided == (in == "in.glb"));  // MTL has no double-sidedness
   REQUIRE(output.has_uvs());
   // Every output vertex carries the UV the input's mapping gives at its place.
   for (const Triangle& t : output.triangles)

@@ -255,19 +255,67 @@ TEST_CASE("OBJ: polygons, negative indices, v/vt/vn forms, continuations, groups
   CHECK(soup.region_names == std::vector<std::string>{"plate", "pin"});
   CHECK(soup.face_regions == std::vector<std::int32_t>{0, 0, 1, 1});
   REQUIRE(soup.has_uvs());
-  CHECK(soup.uvs[2] == Vec2f(1, 1));
+  CHECK(soup.uvs[2] == Vec2f(1, 0));  // v turned to glTF's convention: 1 - v
   CHECK(soup.uvs[4] == Vec2f(0, 0));  // no corner gave vertex 5 a uv
   REQUIRE(soup.has_normals());
   CHECK(soup.normals[0] == Vec3f(0, 0, 1));
+  CHECK(soup.normals[4] == Vec3f(0, 0, 1));  // corners without a normal take the vertex's
 }
 
-TEST_CASE("OBJ: corners of one position with different uvs average them", "[openmesh][obj]") {
+TEST_CASE("OBJ: a seam splits a position into vertices, one per texture coordinate", "[openmesh][obj]") {
   const TriangleSoup soup = test::read_written("seam.obj",
                                                "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 0.5 0\n"
                                                "f 1/1 2/2 3/3\nf 1/4 3/3 2/2\n",
                                                read_soup);
-  REQUIRE(soup.num_vertices() == 3);
-  CHECK(soup.uvs[0] == Vec2f(0.25f, 0));
+  REQUIRE(soup.num_vertices() == 4);
+  CHECK(soup.positions[3] == soup.positions[0]);
+  CHECK(soup.triangles == std::vector<Triangle>{{0, 1, 2}, {3, 2, 1}});
+  CHECK(soup.uvs[0] == Vec2f(0, 1));
+  CHECK(soup.uvs[3] == Vec2f(0.5f, 1));
+}
+
+TEST_CASE("OBJ: mtllib gives each usemtl region its colour, opacity and texture", "[openmesh][obj]") {
+  test::TempDir dir("obj_mtl");
+  const std::vector<char> png = {'\x89', 'P', 'N', 'G', '\r', '\n', '\x1a', '\n', 'r', 'e', 's', 't'};
+  test::write_bytes(dir / "wood.png", png);
+  test::write_text(dir / "not_an_image.tga", "TGA");
+  test::write_text(dir / "parts.mtl",
+                   "# two materials and one the OBJ does not use\n"
+                   "newmtl wood\nKd 0.5 0.25 0.125\nmap_Kd -s 1 1 1 -bm 0.5 wood.png\n"
+                   "newmtl glass\nKd 0 0 1\nTr 0.75\nKe 0.1 0.2 0.3\nmap_Kd not_an_image.tga\n"
+                   "newmtl unused\nKd 1 0 0\n");
+  test::write_text(dir / "parts.obj",
+                   "mtllib parts.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                   "usemtl glass\nf 1/1 2/2 3/3\nusemtl wood\nf 1/1 2/2 4/3\nusemtl metal\nf 1 3 4\n");
+  const TriangleSoup soup = read_soup(dir / "parts.obj");
+  CHECK(soup.region_names == std::vector<std::string>{"glass", "wood", "metal"});
+  REQUIRE(soup.materials.size() == 3);
+  const Material& glass = soup.materials[0];
+  CHECK(glass.name == "glass");
+  CHECK(glass.base_color == std::array<float, 4>{0, 0, 1, 0.25f});
+  CHECK(glass.alpha == Material::Alpha::blend);
+  CHECK(glass.emissive == std::array<float, 3>{0.1f, 0.2f, 0.3f});
+  CHECK(glass.base_color_image == -1);  // only PNG and JPEG are taken
+  const Material& wood = soup.materials[1];
+  CHECK(wood.base_color == std::array<float, 4>{0.5f, 0.25f, 0.125f, 1});
+  CHECK(wood.metallic == 0.0f);
+  REQUIRE(wood.base_color_image == 0);
+  REQUIRE(soup.images.size() == 1);
+  CHECK(soup.images[0].mime_type == "image/png");
+  CHECK(soup.images[0].bytes == std::vector<std::uint8_t>(png.begin(), png.end()));
+  CHECK(soup.materials[2].name == "metal");  // no entry in the library: a plain material
+  CHECK(soup.materials[2].base_color_image == -1);
+
+  SECTION("without its library the file still reads, without materials") {
+    std::filesystem::remove(dir / "parts.mtl");
+    const TriangleSoup bare = read_soup(dir / "parts.obj");
+    CHECK(bare.materials.empty());
+    CHECK(bare.region_names.size() == 3);
+  }
+  SECTION("a malformed number in the library names the library") {
+    test::write_text(dir / "parts.mtl", "newmtl wood\nKd 0.5 oops 1\n");
+    CHECK_THROWS_WITH(read_soup(dir / "parts.obj"), Catch::Contains("parts.mtl"));
+  }
 }
 
 TEST_CASE("OFF: COFF colours, NOFF normals, counts glued to the keyword, comments", "[openmesh][off]") {

@@ -67,6 +67,11 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        }},
       {"--positive-winding", "", "", "keep only tets with winding number > 1/2 (default |w| > 1/2)",
        [&](const std::string&) { t.winding_rule = tetmesh::WindingRule::positive; }},
+      {"--labels", "", "MODE",
+       "label the tets by input part: auto (default: by face region when the input has several, e.g. glTF "
+       "materials or OBJ groups), regions, components (connected parts of the input), winding (nesting "
+       "depth) or none; written as MSH physical groups, Medit references and a VTU cell array",
+       [&](const std::string& v) { o.pipeline.labels = tetmesh::tet_labels_named(v); }},
       {"--no-filter", "", "",
        "keep every tet, labelled by region (tets connected without crossing the input)",
        [&](const std::string&) { o.pipeline.filter = false; }},

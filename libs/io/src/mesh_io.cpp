@@ -81,7 +81,11 @@ void write_guarded(const Format& format, const std::filesystem::path& path,
 
 bool is_volume_format(const Registry& registry, const std::filesystem::path& path,
                       const std::string& explicit_format) {
-  return registry.resolve_for_read(path, explicit_format).kind == MeshKind::volume;
+  // Write-only formats (VTU) count too: tools ask this of their outputs.
+  const Format* format =
+      explicit_format.empty() ? registry.by_extension(path) : registry.by_name(explicit_format);
+  if (!format) format = &registry.resolve_for_read(path, explicit_format);  // throws the usual message
+  return format->kind == MeshKind::volume;
 }
 
 TetMesh read_volume(const Registry& registry, const std::filesystem::path& path, const ReadOptions& options) {
@@ -151,8 +155,10 @@ void write_surface(const Registry& registry, const TriangleSoup& soup, const std
   if (std::string problem = find_soup_inconsistency(soup); !problem.empty())
     throw RunError("refusing to write an inconsistent mesh to " + path.string() + ": " + problem);
   check_output_path(path);
+  WriteOptions named = options;
+  named.destination = path;
   write_guarded(format, path, [&](const std::filesystem::path& temp) {
-    format.write_surface(soup, temp, options);
+    format.write_surface(soup, temp, named);
     if (check) check(temp);
   });
 }

@@ -1,6 +1,7 @@
 #include <mr/tetmesh/tetrahedralize.h>
 
 #include "defect_faces.h"
+#include "part_labels.h"
 #include "regions.h"
 #include "rounding_stage.h"
 
@@ -393,6 +394,21 @@ TriangleSoup oriented_input(const TriangleSoup& input, PipelineStats& stats, con
   return oriented;
 }
 
+// Labels the tets extracted from `mesh` by `keep` (in slot order) by the
+// input part each lies in, and names the labels.
+void label_parts(TetMesh& out, const Mesh& mesh, std::span<const char> keep, const TriangleSoup& oriented,
+                 const PipelineOptions& options, StageTimer& timer) {
+  detail::PartLabels parts =
+      detail::part_labels(mesh, keep, oriented, options.labels, options.tetrahedralize.winding_rule);
+  out.tet_labels.clear();
+  for (Index t = 0; t < mesh.tet_slots(); ++t)
+    if (keep[t]) out.tet_labels.push_back(parts.labels[t]);
+  out.tet_label_names = std::move(parts.names);
+  std::vector<std::int32_t> distinct = out.tet_labels;
+  std::sort(distinct.begin(), distinct.end());
+  count(timer, "labels", std::size_t(std::unique(distinct.begin(), distinct.end()) - distinct.begin()));
+}
+
 // `stats` carries the stages of an earlier run, if any: their times add up.
 PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, PipelineStats stats,
                    const Logger& logger) {
@@ -427,7 +443,7 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
     StageTimer timer(result.stats, "output", logger);
     if (options.filter && !options.keep_rejected) {
       result.mesh = extract_tets(mesh, keep);
-      result.mesh.tet_labels.assign(result.mesh.tets.size(), 1);
+      label_parts(result.mesh, mesh, keep, oriented, options, timer);
     } else {
       // Every tet, labelled 1 / 0 by the filter or by its region.
       std::vector<std::int32_t> labels;

@@ -23,6 +23,14 @@ Vec3d tet_centroid(const Mesh& mesh, Index t) {
                  mesh.position(c[3]).approx);
 }
 
+double tet_approx_volume6(const Mesh& mesh, Index t) {
+  const Tet& c = mesh.tet(t);
+  const Vec3d& a = mesh.position(c[0]).approx;
+  return (mesh.position(c[1]).approx - a)
+      .cross(mesh.position(c[2]).approx - a)
+      .dot(mesh.position(c[3]).approx - a);
+}
+
 bool is_inside(double winding, WindingRule rule) {
   return (rule == WindingRule::absolute ? std::abs(winding) : winding) > 0.5;
 }
@@ -208,11 +216,7 @@ TetClassification classify_regions(const Mesh& mesh, const WindingNumberTree& tr
   std::vector<double> largest_volume(largest.size(), -1.0);
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
     if (!mesh.tet_alive(t)) continue;
-    const Tet& c = mesh.tet(t);
-    const Vec3d& a = mesh.position(c[0]).approx;
-    const double volume = (mesh.position(c[1]).approx - a)
-                              .cross(mesh.position(c[2]).approx - a)
-                              .dot(mesh.position(c[3]).approx - a);
+    const double volume = tet_approx_volume6(mesh, t);
     if (volume > largest_volume[labels[t]]) {
       largest_volume[labels[t]] = volume;
       largest[labels[t]] = t;

@@ -15,7 +15,10 @@ TriangleSoup read_stl(std::string_view bytes, const std::string& name);
 void write_stl(const TriangleSoup& soup, const std::filesystem::path& path, bool binary);
 
 TriangleSoup read_obj(std::string_view bytes, const std::string& name);
-void write_obj(const TriangleSoup& soup, const std::filesystem::path& path);
+/// `destination`: the file's final name, after which the MTL library and
+/// textures are named (empty: materials are not written).
+void write_obj(const TriangleSoup& soup, const std::filesystem::path& path,
+               const std::filesystem::path& destination = {});
 
 TriangleSoup read_off(std::string_view bytes, const std::string& name);
 void write_off(const TriangleSoup& soup, const std::filesystem::path& path);

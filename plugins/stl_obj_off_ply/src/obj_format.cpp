@@ -7,18 +7,29 @@
 // Choices:
 // - Indices refer to elements defined before the face (as the OBJ spec says);
 //   negative indices count back from the last one. Index 0 is an error.
-// - The positions are the vertex set, kept exactly. A corner's texture
-//   coordinate and normal are attributes of its position: where corners of one
-//   position carry different ones (a seam) the UVs are averaged and the normals
-//   summed and normalized. Positions no corner gives an attribute to get zero.
+// - The positions are kept exactly, vertex i for the i-th 'v'. Where the
+//   corners of one position carry different texture coordinates or normals
+//   (a seam, a crease), the first combination stays on vertex i and each other
+//   one gets a copy of the position appended after the last 'v', as glTF
+//   stores seams. Vertices without a texture coordinate or normal get zero.
+// - Texture coordinates are turned to glTF's convention (v runs down the
+//   image: v' = 1 - v), the soup's, so that textures map alike from any format.
 // - Regions: 'usemtl' names if the file has any, else 'g'/'o' group names.
-//   Faces before the first name belong to a region named "default".
+//   Faces before the first name belong to a region named "default". With
+//   'usemtl', the 'mtllib' libraries found beside the file give each region
+//   its material and texture (mtl_format.h).
 // - 'v x y z r g b' colours are kept when every vertex has them.
 
 #include "formats.h"
+#include "mtl_format.h"
 #include "soup_importer.h"
 
 #include <mr/io/text_cursor.h>
+
+#include <algorithm>
+#include <limits>
+#include <map>
+#include <tuple>
 
 namespace mr::plugins::stl_obj_off_ply {
 namespace {
@@ -71,6 +82,8 @@ class ObjParser {
       normals_.emplace_back(read_vector(tokens, "normal").cast<float>());
     else if (keyword == "f")
       parse_face(tokens);
+    else if (keyword == "mtllib")
+      libraries_.emplace_back(io::trim(tokens.rest()));
     else if (keyword == "usemtl") {
       material_ = materials_.id_of(region_name(tokens));
       has_materials_ = true;
@@ -95,7 +108,7 @@ class ObjParser {
   void parse_uv(io::Tokens& tokens) {
     const double u = cursor_.number(tokens, "texture coordinate");
     const double v = tokens.empty() ? 0.0 : cursor_.number(tokens, "texture coordinate");
-    uvs_.emplace_back(static_cast<float>(u), static_cast<float>(v));
+    uvs_.emplace_back(u, v);
   }
 
   void parse_vertex(io::Tokens& tokens) {
@@ -136,27 +149,15 @@ class ObjParser {
 
   void parse_face(io::Tokens& tokens) {
     polygon_.clear();
-    for (std::string_view token = tokens.next(); !token.empty(); token = tokens.next()) {
-      const Corner corner = parse_corner(token);
-      polygon_.push_back(corner.position);
-      add_corner_attributes(corner);
-    }
+    for (std::string_view token = tokens.next(); !token.empty(); token = tokens.next())
+      polygon_.push_back(parse_corner(token));
     if (polygon_.size() < 3)
       cursor_.fail("face with " + std::to_string(polygon_.size()) + " vertices, needs at least 3");
-    append_fan(triangles_, polygon_);
-    face_materials_.resize(triangles_.size(), material_);
-    face_groups_.resize(triangles_.size(), group_);
-  }
-
-  void add_corner_attributes(const Corner& corner) {
-    if (corner.uv >= 0) {
-      if (uv_sum_.size() <= corner.position) uv_sum_.resize(positions_.size(), Vec3d::Zero());
-      uv_sum_[corner.position] += Vec3d(uvs_[corner.uv].x(), uvs_[corner.uv].y(), 1.0);
-    }
-    if (corner.normal >= 0) {
-      if (normal_sum_.size() <= corner.position) normal_sum_.resize(positions_.size(), Vec3d::Zero());
-      normal_sum_[corner.position] += normals_[corner.normal].cast<double>();
-    }
+    for (std::size_t i = 1; i + 1 < polygon_.size(); ++i)  // a fan, as append_fan
+      corners_.insert(corners_.end(), {polygon_[0], polygon_[i], polygon_[i + 1]});
+    const std::size_t triangles = corners_.size() / 3;
+    face_materials_.resize(triangles, material_);
+    face_groups_.resize(triangles, group_);
   }
 
   static std::vector<std::int32_t> regions_of(const std::vector<std::int32_t>& ids, RegionTable& table) {
@@ -167,40 +168,74 @@ class ObjParser {
 
   TriangleSoup finish() {
     TriangleSoup soup;
-    soup.triangles = std::move(triangles_);
     if (has_materials_ || has_groups_) {
       RegionTable& table = has_materials_ ? materials_ : groups_;
       soup.face_regions = regions_of(has_materials_ ? face_materials_ : face_groups_, table);
       soup.region_names = table.names();
     }
-    const std::size_t n = positions_.size();
-    if (!uv_sum_.empty()) {
-      uv_sum_.resize(n, Vec3d::Zero());
-      for (const Vec3d& s : uv_sum_)
-        soup.uvs.push_back(s.z() > 0
-                               ? Vec2f(static_cast<float>(s.x() / s.z()), static_cast<float>(s.y() / s.z()))
-                               : Vec2f::Zero());
-    }
-    if (!normal_sum_.empty()) {
-      normal_sum_.resize(n, Vec3d::Zero());
-      for (const Vec3d& s : normal_sum_)
-        soup.normals.push_back(s.norm() > 0 ? Vec3f(s.normalized().cast<float>()) : Vec3f::Zero());
-    }
-    if (colors_.size() == n && n > 0) soup.colors = std::move(colors_);
+    if (colors_.size() == positions_.size() && !positions_.empty()) soup.colors = std::move(colors_);
     soup.positions = std::move(positions_);
+    add_vertices_and_triangles(soup);
+    if (has_materials_) attach_mtl_materials(soup, libraries_, cursor_.path());
     return soup;
   }
+
+  // Vertex i is position i with the attributes of its first corner; other
+  // combinations of attributes at a position get a copy of it (see the top).
+  void add_vertices_and_triangles(TriangleSoup& soup) {
+    const bool with_uvs =
+        std::any_of(corners_.begin(), corners_.end(), [](const Corner& c) { return c.uv >= 0; });
+    const bool with_normals =
+        std::any_of(corners_.begin(), corners_.end(), [](const Corner& c) { return c.normal >= 0; });
+    const std::size_t n = soup.positions.size();
+    std::map<std::tuple<Index, std::int64_t, std::int64_t>, Index> copies;
+    std::vector<Corner> vertex_corner(n, Corner{kUnset});
+    // A corner without a texture coordinate (normal) takes the vertex's.
+    const auto agree = [](std::int64_t a, std::int64_t b) { return a == b || a < 0 || b < 0; };
+    const auto vertex_of = [&](const Corner& c) -> Index {
+      Corner& f = vertex_corner[c.position];
+      if (f.position == kUnset) f = c;
+      if (agree(f.uv, c.uv) && agree(f.normal, c.normal)) {
+        f.uv = std::max(f.uv, c.uv);
+        f.normal = std::max(f.normal, c.normal);
+        return c.position;
+      }
+      const auto [it, added] = copies.try_emplace({c.position, c.uv, c.normal}, Index(soup.positions.size()));
+      if (added) {
+        soup.positions.push_back(soup.positions[c.position]);
+        if (soup.has_colors()) soup.colors.push_back(soup.colors[c.position]);
+        vertex_corner.push_back(c);
+      }
+      return it->second;
+    };
+    soup.triangles.reserve(corners_.size() / 3);
+    for (std::size_t i = 0; i < corners_.size(); i += 3)
+      soup.triangles.push_back(
+          {vertex_of(corners_[i]), vertex_of(corners_[i + 1]), vertex_of(corners_[i + 2])});
+    if (with_uvs) {
+      for (const Corner& c : vertex_corner)
+        soup.uvs.push_back(c.uv >= 0 ? Vec2f(float(uvs_[c.uv].x()), float(1.0 - uvs_[c.uv].y()))
+                                     : Vec2f::Zero());
+    }
+    if (with_normals) {
+      for (const Corner& c : vertex_corner) {
+        const Vec3f normal = c.normal >= 0 ? normals_[c.normal] : Vec3f::Zero();
+        soup.normals.push_back(normal.norm() > 0 ? Vec3f(normal.normalized()) : Vec3f::Zero());
+      }
+    }
+  }
+
+  static constexpr Index kUnset = std::numeric_limits<Index>::max();
 
   io::TextCursor cursor_;
   std::string joined_;
   std::vector<Vec3d> positions_;
-  std::vector<Vec2f> uvs_;
+  std::vector<Eigen::Vector2d> uvs_;  // as read: flipped in double, 1 - (1 - v) is v
   std::vector<Vec3f> normals_;
   std::vector<Vec4f> colors_;
-  std::vector<Triangle> triangles_;
-  std::vector<Index> polygon_;
-  std::vector<Vec3d> uv_sum_;  // (u, v, corner count) per position
-  std::vector<Vec3d> normal_sum_;
+  std::vector<Corner> corners_;  // three per triangle
+  std::vector<Corner> polygon_;
+  std::vector<std::string> libraries_;  // 'mtllib' names
   RegionTable materials_, groups_;
   std::int32_t material_ = -1, group_ = -1;
   bool has_materials_ = false, has_groups_ = false;

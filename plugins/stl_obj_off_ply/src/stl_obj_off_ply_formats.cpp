@@ -38,12 +38,13 @@ void register_stl_obj_off_ply_formats(io::Registry& registry) {
   };
   registry.add(std::move(stl));
 
-  io::Format obj = surface_format("obj", ".obj", "Wavefront OBJ with normals, uvs and usemtl regions");
+  io::Format obj =
+      surface_format("obj", ".obj", "Wavefront OBJ with normals, uvs, usemtl regions and MTL materials");
   obj.read_surface_bytes = [](std::string_view bytes, const std::string& name, const io::ReadOptions&) {
     return read_obj(bytes, name);
   };
   obj.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path,
-                         const io::WriteOptions&) { write_obj(soup, path); };
+                         const io::WriteOptions& options) { write_obj(soup, path, options.destination); };
   registry.add(std::move(obj));
 
   io::Format off = surface_format("off", ".off", "Object File Format (OFF, COFF, NOFF, STOFF)");

@@ -114,6 +114,7 @@ TetMesh assemble_tet_mesh(MshContent&& content, const std::string& path) {
   mesh.positions = std::move(content.positions);
   mesh.tet_labels = std::move(content.tet_labels);
   mesh.face_labels = std::move(content.triangle_labels);
+  mesh.tet_label_names = std::move(content.tet_label_names);
   return mesh;
 }
 

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@ struct MshContent {
   std::vector<std::int32_t> tet_labels;
   std::vector<std::array<std::uint64_t, 3>> triangles;
   std::vector<std::int32_t> triangle_labels;
+  std::map<std::int32_t, std::string> tet_label_names;
 
   /// Keeps tets (type 4; corners of type 11) and triangles (type 2; corners
   /// of type 9); other types are skipped. `nodes` holds the element's first

@@ -83,6 +83,8 @@ class MshReader {
       cursor_.skip_line();
     if (v4 && name == "$Entities") {
       read_msh4_entities(cursor_, encoding, labels_);
+    } else if (name == "$PhysicalNames") {
+      read_physical_names();
     } else if (name == "$Nodes") {
       v4 ? read_msh4_nodes(cursor_, encoding, content_) : read_msh2_nodes(cursor_, encoding, content_);
     } else if (name == "$Elements") {
@@ -92,6 +94,22 @@ class MshReader {
       return false;
     }
     return true;
+  }
+
+  // Lines `dim tag "name"` (text in every encoding); names of volumes
+  // (dim 3) become tet label names.
+  void read_physical_names() {
+    const std::uint64_t count = cursor_.unsigned_integer("number of physical names");
+    cursor_.require(count, 6, "physical names");
+    for (std::uint64_t i = 0; i < count; ++i) {
+      const std::int32_t dim = cursor_.int32("physical dimension");
+      const std::int32_t tag = cursor_.int32("physical tag");
+      std::string_view line;
+      cursor_.next_line(line);
+      const std::size_t open = line.find('"'), close = line.rfind('"');
+      if (open == std::string_view::npos || close == open) cursor_.fail("a physical name is not quoted");
+      if (dim == 3) content_.tet_label_names[tag] = std::string(line.substr(open + 1, close - open - 1));
+    }
   }
 
   io::TextCursor cursor_;

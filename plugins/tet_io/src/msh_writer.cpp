@@ -8,6 +8,7 @@
 #include <mr/core/errors.h>
 #include <mr/io/output_file.h>
 
+#include <algorithm>
 #include <limits>
 #include <string>
 
@@ -67,6 +68,25 @@ void write_header(MshOutput& out, const char* version) {
     out.file() << "\n";
   }
   out.file() << "$EndMeshFormat\n";
+}
+
+// Names of the tet labels written as physical tags, in text whatever the
+// encoding (both versions). gmsh quotes names and has no escape: a double
+// quote in a name becomes a single one.
+void write_physical_names(MshOutput& out, const TetMesh& mesh, const MshDimension& volumes) {
+  std::vector<std::pair<std::int32_t, std::string>> names;
+  for (const MshEntity& entity : volumes.entities) {
+    const auto it = mesh.tet_label_names.find(entity.label);
+    if (entity.has_physical && it != mesh.tet_label_names.end()) names.emplace_back(entity.label, it->second);
+  }
+  if (names.empty()) return;
+  out.file() << "$PhysicalNames\n" << std::to_string(names.size()) << "\n";
+  for (auto& [label, name] : names) {
+    std::replace(name.begin(), name.end(), '"', '\'');
+    std::replace(name.begin(), name.end(), '\n', ' ');
+    out.file() << "3 " << std::to_string(label) << " \"" << name << "\"\n";
+  }
+  out.file() << "$EndPhysicalNames\n";
 }
 
 // ---- MSH 4.1 ----
@@ -198,6 +218,7 @@ void write_msh(const TetMesh& mesh, const std::filesystem::path& path, const io:
   io::OutputFile file(path);
   MshOutput out(file, options.binary);
   write_header(out, v22 ? "2.2" : "4.1");
+  write_physical_names(out, mesh, layout.volumes);
   if (v22) {
     write_msh2_nodes(out, mesh);
     write_msh2_elements(out, mesh, layout);

@@ -5,6 +5,8 @@
 
 #include <mr/core/types.h>
 
+#include <map>
+#include <string>
 #include <vector>
 
 namespace mr {
@@ -13,6 +15,9 @@ struct TetMesh {
   std::vector<Vec3d> positions;
   std::vector<Tet> tets;
   std::vector<std::int32_t> tet_labels;  ///< empty or tets.size() entries
+  /// Optional names of tet labels (MSH physical names), e.g. the input's
+  /// material or group names.
+  std::map<std::int32_t, std::string> tet_label_names;
 
   std::vector<Triangle> faces;            ///< optional tagged surface triangles
   std::vector<std::int32_t> face_labels;  ///< empty or faces.size() entries

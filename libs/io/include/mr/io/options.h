@@ -4,6 +4,7 @@
 
 #include <mr/core/coordinate_grid.h>
 
+#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -58,6 +59,9 @@ struct WriteOptions {
   std::string msh_version = "4.1";
   DracoOptions draco;
   LevelSetWriteOptions level_set;
+  /// The file being written, set by write_surface (writers are handed a
+  /// temporary path): companions are named after it (OBJ's .mtl, textures).
+  std::filesystem::path destination;
 };
 
 }  // namespace mr::io

@@ -10,7 +10,22 @@
 #include <mr/tetmesh/options.h>
 #include <mr/tetmesh/stats.h>
 
+#include <string_view>
+
 namespace mr::tetmesh {
+
+/// How the kept tets are labelled (PipelineResult::mesh.tet_labels).
+enum class TetLabels {
+  automatic,   ///< parts when the input has two face regions or more, else none
+  none,        ///< label 1 on every tet
+  parts,       ///< by the input's face regions (glTF materials, OBJ groups): region id + 1
+  components,  ///< by connected component of the input: 1, 2, ... in order of first face
+  winding,     ///< by the input's winding number rounded: nesting or overlap depth, at least 1
+};
+
+/// The mode named "auto", "none", "regions", "components" or "winding";
+/// throws mr::UsageError for another name.
+TetLabels tet_labels_named(std::string_view name);
 
 struct PipelineOptions {
   TetrahedralizeOptions tetrahedralize;
@@ -21,6 +36,10 @@ struct PipelineOptions {
   /// With filter: return the tets it rejected too, labelled 0 (kept tets 1),
   /// for meshrepair's manifold fix, which may add some of them.
   bool keep_rejected = false;
+  /// Labels of the kept tets (with filter, without keep_rejected). Each set
+  /// of tets connected without crossing the tracked surface gets the label
+  /// of the part most inside it (see part_labels.h).
+  TetLabels labels = TetLabels::automatic;
   /// Run the mesh-improvement stage. meshrepair's fast path turns it off:
   /// it needs a valid embedding, not well-shaped tets.
   bool improve = true;
@@ -28,8 +47,9 @@ struct PipelineOptions {
 
 struct PipelineResult {
   /// Doubles only, every tet positively oriented on these doubles (checked
-  /// exactly before returning). With filter: label 1 on every kept tet (and
-  /// 0 on rejected ones, with keep_rejected); without: the region label of
+  /// exactly before returning). With filter: the label of each kept tet's
+  /// part (PipelineOptions::labels; 1 without parts), or 1 on kept tets and
+  /// 0 on rejected ones with keep_rejected; without: the region label of
   /// each tet.
   TetMesh mesh;
   /// The tracked surface: the mesh faces the input triangles were inserted

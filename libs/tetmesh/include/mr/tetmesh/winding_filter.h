@@ -26,6 +26,8 @@ struct TetClassification {
 
 /// Centroid of a tet, from the double approximations of its corners.
 Vec3d tet_centroid(const Mesh& mesh, Index t);
+/// Six times a tet's signed volume, from the double approximations of its corners.
+double tet_approx_volume6(const Mesh& mesh, Index t);
 
 /// Whether a winding number is "inside" under `rule` (w > 1/2, or |w| > 1/2).
 bool is_inside(double winding, WindingRule rule);
