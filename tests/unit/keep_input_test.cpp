@@ -191,6 +191,23 @@ TEST_CASE("meshrepair refuses --provenance for Draco output", "[repair][keep]") 
   }
 }
 
+TEST_CASE("meshrepair --source-faces wants glTF output without Draco", "[repair][keep]") {
+  const io::Registry registry = io::make_default_registry();
+  const test::TempDir dir("meshrepair_source_faces");
+  io::write_surface(registry, test::cube_soup(), dir / "in.obj");
+  for (const std::vector<std::string>& target :
+       {std::vector<std::string>{(dir / "out.obj").string()},
+        std::vector<std::string>{(dir / "out.glb").string(), "--draco"}}) {
+    std::vector<std::string> args{(dir / "in.obj").string(), "--source-faces"};
+    args.insert(args.end(), target.begin(), target.end());
+    const test::ToolRun run = test::run_tool(tools::meshrepair, args);
+    CAPTURE(run.err);
+    REQUIRE(run.exit_code == 2);
+    REQUIRE(run.err.find("--source-faces") != std::string::npos);
+    REQUIRE(!std::filesystem::exists(target[0]));
+  }
+}
+
 TEST_CASE("face provenance tells kept, recut and filled faces apart", "[check][keep]") {
   TriangleSoup input;
   input.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
@@ -332,7 +349,8 @@ TEST_CASE("meshrepair carries materials, their images and UVs from GLB and OBJ+M
 
   const test::ToolRun run =
       test::run_tool(tools::meshrepair,
-                     {(dir / in).string(), (dir / "out.glb").string(), "--stats", (dir / "s.json").string()});
+                     {(dir / in).string(), (dir / "out.glb").string(), "--stats", (dir / "s.json").string(),
+                      "--provenance", (dir / "p.json").string(), "--source-faces"});
   INFO(run.err);
   REQUIRE(run.exit_code == 0);
   REQUIRE(read_json(dir / "s.json")["path"] == "tetrahedralize");
@@ -354,6 +372,18 @@ TEST_CASE("meshrepair carries materials, their images and UVs from GLB and OBJ+M
       CAPTURE(p.transpose(), output.uvs[v].transpose());
       REQUIRE((output.uvs[v] - expected).norm() < 1e-5f);
     }
+  // _SOURCE_FACE: the provenance file's entries, face for face in the
+  // written order (faces grouped by material); a kept face is its input
+  // triangle.
+  const nlohmann::json provenance = read_json(dir / "p.json");
+  REQUIRE(output.face_sources == provenance["input_face"].get<std::vector<std::int64_t>>());
+  std::size_t kept = 0;
+  for (std::size_t f = 0; f < output.triangles.size(); ++f) {
+    if (provenance["source"][f] != "kept") continue;
+    ++kept;
+    REQUIRE(corner_set(output, f) == corner_set(input, std::size_t(output.face_sources[f])));
+  }
+  CHECK(kept > 0);
   const std::filesystem::path tools_dir = MR_TEST_TOOLS_DIR;
   const std::string command = "node '" + (tools_dir / "validate_gltf.mjs").string() + "' '" +
                               (dir / "out.glb").string() + "' > '" + (dir / "report.txt").string() + "' 2>&1";

@@ -35,6 +35,7 @@ struct ToolOptions {
   std::optional<RebuildMode> rebuild;  ///< --remesh, --keep-input; unset: by the input's size
   std::string stats_path;
   std::string provenance_path;
+  bool source_faces = false;  ///< --source-faces
   std::size_t max_memory = cli::default_max_memory();
   bool quiet = false;
   bool verbose = false;
@@ -96,6 +97,10 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        "write, as JSON, the input triangle each output face keeps or lies on (-1: filled where the input "
        "had no surface), in the output's face order (not with Draco output, which reorders faces)",
        [&](const std::string& v) { o.provenance_path = v; }},
+      {"--source-faces", "", "",
+       "store each output face's input triangle in a glTF output as the _SOURCE_FACE vertex attribute "
+       "(-1: filled); every face then has vertices of its own (not with Draco)",
+       [&](const std::string&) { o.source_faces = true; }},
       cli::ascii_option(o.write.binary),
       cli::stats_option(o.stats_path,
                         "write input defects, output figures (faces, genus, volume, Hausdorff distances both "
@@ -161,27 +166,39 @@ struct OutputProvenance {
   check::ProvenanceSummary summary;
 };
 
+// The faces are ordered by region, as the glTF writer writes them, so that
+// the --provenance file follows the written file's faces.
 TriangleSoup dressed(const TriangleSoup& rounded, const CoordinateGrid& grid, const TriangleSoup& input,
-                     double epsilon, OutputProvenance& provenance) {
+                     double epsilon, bool source_faces, OutputProvenance& provenance) {
   provenance.faces = check::face_provenance(rounded, input, grid, epsilon);
   provenance.summary = check::summarize_provenance(provenance.faces, rounded);
-  return repair::with_input_attributes(rounded, input, provenance.faces.input_face, grid);
+  TriangleSoup surface = repair::with_input_attributes(rounded, input, provenance.faces.input_face, grid);
+  order_faces_by_region(surface, provenance.faces);
+  if (source_faces) surface.face_sources = provenance.faces.input_face;
+  return surface;
 }
 
 void write_provenance(const ToolOptions& options, const OutputProvenance& provenance) {
   if (!options.provenance_path.empty()) write_provenance_file(options.provenance_path, provenance.faces);
 }
 
-// Draco reorders faces, so a face-order provenance would not match the file.
+// Draco reorders faces, so a face-order provenance would not match the file;
+// _SOURCE_FACE is a glTF attribute.
 void check_provenance_request(const ToolOptions& options, const io::Registry& registry,
                               const std::string& out) {
-  if (options.provenance_path.empty()) return;
+  if (options.provenance_path.empty() && !options.source_faces) return;
   const CoordinateGrid grid =
       io::surface_position_grid(registry, out, options.write, Vec3d::Zero(), Vec3d::Ones());
+  const char* option = options.provenance_path.empty() ? "--source-faces: " : "--provenance: ";
   if (grid.kind() == CoordinateGrid::Kind::quantized)
+    throw UsageError(option + out +
+                     " is Draco-compressed, and Draco reorders faces; write GLB without --draco" +
+                     (options.source_faces ? "" : ", or PLY, OBJ, STL"));
+  const std::string format = registry.resolve_for_write(out, options.write.format).name;
+  if (options.source_faces && format != "glb" && format != "gltf")
     throw UsageError(
-        "--provenance: " + out +
-        " is Draco-compressed, and Draco reorders faces; write GLB without --draco, or PLY, OBJ, STL");
+        "--source-faces: " + out + " is " + format +
+        ", which has no per-vertex attribute to hold it; write .glb or .gltf (or use --provenance)");
 }
 
 // The holes-only path: its holes filled, the input written back with the
@@ -207,11 +224,11 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
   start = std::chrono::steady_clock::now();
   OutputProvenance provenance;
   const SurfaceWrite written =  // repair_holes_only checked it watertight
-      write_watertight_surface(registry, holes.fill->surface, files[1], write_options,
-                               !options.draco_position_bits,
-                               [&](const TriangleSoup& rounded, const CoordinateGrid& rounded_grid) {
-                                 return dressed(rounded, rounded_grid, input, epsilon, provenance);
-                               });
+      write_watertight_surface(
+          registry, holes.fill->surface, files[1], write_options, !options.draco_position_bits,
+          [&](const TriangleSoup& rounded, const CoordinateGrid& rounded_grid) {
+            return dressed(rounded, rounded_grid, input, epsilon, options.source_faces, provenance);
+          });
   const double seconds_write = seconds_since(start) - written.written.seconds;
   write_provenance(options, provenance);
   if (!options.stats_path.empty())
@@ -245,22 +262,20 @@ tetmesh::PipelineResult tetrahedralize_for_repair(const ToolOptions& options, co
   }
 }
 
-void run(const ToolOptions& options, const std::vector<std::string>& files, std::ostream& out,
-         std::ostream& err) {
-  const io::Registry registry = io::make_default_registry();
-  check_provenance_request(options, registry, files[1]);
-  auto start = std::chrono::steady_clock::now();
-  check_file_fits(files[0], options.max_memory);
-  const TriangleSoup input = io::read_surface(registry, files[0]);
-  const double seconds_read = seconds_since(start);
-  check_faces_fit(files[0], input.num_triangles(), kPipelineBytesPerFace, options.max_memory);
-  check_has_area(files[0], input);
-  std::string declined;
-  if (try_holes_only(options, registry, files, input, seconds_read, declined, out)) return;
-  if (options.verbose && !options.quiet) err << "meshrepair: rebuilding the surface (" << declined << ")\n";
-  RebuildMode mode = rebuild_mode(input.triangles.size(), options.rebuild);
-  const tetmesh::PipelineResult pipeline = tetrahedralize_for_repair(options, input, mode, err);
+// What run() read and decided before rebuilding the surface.
+struct RebuildInput {
+  const TriangleSoup& input;
+  double seconds_read = 0.0;
+  std::string declined;  ///< why the holes-only path declined
+};
 
+// Tets, surface repair, the written file and its figures, in `mode` (which
+// becomes remesh where keeping the input costs too much).
+void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
+                       const std::vector<std::string>& files, const RebuildInput& in, RebuildMode& mode,
+                       std::ostream& out, std::ostream& err) {
+  const TriangleSoup& input = in.input;
+  const tetmesh::PipelineResult pipeline = tetrahedralize_for_repair(options, input, mode, err);
   repair::RepairOptions repair_options =
       surface_repair_options(pipeline, options.tetrahedralize.threads, options.cleanup, mode);
   io::WriteOptions write_options = options.write;
@@ -274,18 +289,19 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
       err << "meshrepair: end " << stage.name << " (" << stage.seconds << " s)\n";
   }
 
-  start = std::chrono::steady_clock::now();
+  const auto start = std::chrono::steady_clock::now();
   check::WrittenFileReport written;
   OutputProvenance provenance;
   io::write_surface(registry,
-                    dressed(repaired.surface, repaired.grid, input, pipeline.parameters.epsilon, provenance),
+                    dressed(repaired.surface, repaired.grid, input, pipeline.parameters.epsilon,
+                            options.source_faces, provenance),
                     files[1], write_options, check::watertight_file_check(registry, files[1], &written));
   const double seconds_write = seconds_since(start) - written.seconds;
   write_provenance(options, provenance);
   if (!options.stats_path.empty())
     cli::write_stats_file(options.stats_path,
                           make_repair_stats({input, pipeline, repaired, written, provenance.summary,
-                                             seconds_read, seconds_write, declined})
+                                             in.seconds_read, seconds_write, in.declined})
                               .dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << repaired.surface.triangles.size()
@@ -293,6 +309,34 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
         << repaired.manifold.nonmanifold_edges_found + repaired.manifold.nonmanifold_vertices_found
         << " non-manifold spots resolved, " << kept_phrase(provenance.summary) << ", epsilon "
         << pipeline.parameters.epsilon << ")\n";
+}
+
+void run(const ToolOptions& options, const std::vector<std::string>& files, std::ostream& out,
+         std::ostream& err) {
+  const io::Registry registry = io::make_default_registry();
+  check_provenance_request(options, registry, files[1]);
+  const auto start = std::chrono::steady_clock::now();
+  check_file_fits(files[0], options.max_memory);
+  const TriangleSoup input = io::read_surface(registry, files[0]);
+  RebuildInput rebuild{input, seconds_since(start), {}};
+  check_faces_fit(files[0], input.num_triangles(), kPipelineBytesPerFace, options.max_memory);
+  check_has_area(files[0], input);
+  if (try_holes_only(options, registry, files, input, rebuild.seconds_read, rebuild.declined, out)) return;
+  if (options.verbose && !options.quiet)
+    err << "meshrepair: rebuilding the surface (" << rebuild.declined << ")\n";
+  RebuildMode mode = rebuild_mode(input.triangles.size(), options.rebuild);
+  try {
+    rebuild_and_write(options, registry, files, rebuild, mode, out, err);
+  } catch (const RunError& e) {
+    // Faces kept as they are give the clean-up and the rounding to the
+    // output's grid less room; the full rebuild always has it. --keep-input
+    // asked for the input kept or nothing.
+    if (mode != RebuildMode::keep_input || options.rebuild) throw;
+    if (!options.quiet)
+      err << "meshrepair: keeping the input failed (" << e.what() << "); rebuilding the surface instead\n";
+    mode = RebuildMode::remesh;
+    rebuild_and_write(options, registry, files, rebuild, mode, out, err);
+  }
 }
 
 }  // namespace

@@ -2,7 +2,10 @@
 
 #include <mr/cli/run_tool.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <type_traits>
 
 namespace mr::tools {
 namespace {
@@ -27,6 +30,26 @@ void write_provenance_file(const std::string& path, const check::FaceProvenance&
   const nlohmann::json json = {
       {"faces", provenance.input_face.size()}, {"input_face", provenance.input_face}, {"source", sources}};
   cli::write_stats_file(path, json.dump());
+}
+
+void order_faces_by_region(TriangleSoup& surface, check::FaceProvenance& provenance) {
+  if (!surface.has_face_regions()) return;
+  std::vector<std::size_t> order(surface.triangles.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const auto group = [&](std::size_t f) { return std::max(surface.face_regions[f], -1); };
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return group(a) < group(b); });
+  const auto permuted = [&](const auto& values) {
+    std::decay_t<decltype(values)> out;
+    out.reserve(values.size());
+    for (std::size_t f : order) out.push_back(values[f]);
+    return out;
+  };
+  surface.triangles = permuted(surface.triangles);
+  surface.face_regions = permuted(surface.face_regions);
+  if (surface.has_face_sources()) surface.face_sources = permuted(surface.face_sources);
+  provenance.input_face = permuted(provenance.input_face);
+  provenance.source = permuted(provenance.source);
 }
 
 nlohmann::json provenance_figures(const check::ProvenanceSummary& summary) {

@@ -13,6 +13,10 @@ namespace mr::tools {
 /// {"faces": N, "input_face": [...], "source": ["kept" | "recut" | "filled", ...]}.
 void write_provenance_file(const std::string& path, const check::FaceProvenance& provenance);
 
+/// Orders `surface`'s faces by region (stably, regions below 0 first), as
+/// the glTF writer writes them, and `provenance`'s entries with them.
+void order_faces_by_region(TriangleSoup& surface, check::FaceProvenance& provenance);
+
 nlohmann::json provenance_figures(const check::ProvenanceSummary& summary);
 
 /// "N input faces kept (P% of the area)".

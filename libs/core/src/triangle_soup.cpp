@@ -42,6 +42,13 @@ void TriangleSoup::append(const TriangleSoup& other) {
     else
       face_regions.resize(triangles.size(), 0);
   }
+  if (has_face_sources() || other.has_face_sources()) {
+    face_sources.resize(old_triangles, -1);
+    if (other.has_face_sources())
+      face_sources.insert(face_sources.end(), other.face_sources.begin(), other.face_sources.end());
+    else
+      face_sources.resize(triangles.size(), -1);
+  }
   if (region_names.size() < other.region_names.size()) region_names.resize(other.region_names.size());
   for (std::size_t i = 0; i < other.region_names.size(); ++i)
     if (region_names[i].empty()) region_names[i] = other.region_names[i];
@@ -68,7 +75,8 @@ std::string find_soup_inconsistency(const TriangleSoup& soup) {
   for (const std::string& problem :
        {check_size(soup.normals, n, "normals"), check_size(soup.uvs, n, "texture coordinates"),
         check_size(soup.colors, n, "colors"),
-        check_size(soup.face_regions, soup.triangles.size(), "face regions")})
+        check_size(soup.face_regions, soup.triangles.size(), "face regions"),
+        check_size(soup.face_sources, soup.triangles.size(), "face sources")})
     if (!problem.empty()) return problem;
   for (std::size_t m = 0; m < soup.materials.size(); ++m) {
     const int image = soup.materials[m].base_color_image;

@@ -6,6 +6,7 @@
 #include "gltf_materials.h"
 #include "gltf_scene.h"
 #include "gltf_soup_builder.h"
+#include "gltf_vertex_data.h"
 
 #include <mr/core/errors.h>
 
@@ -73,6 +74,27 @@ TriangleSoup read_vertices(const AccessorReader& reader, const tinygltf::Primiti
       soup.colors.emplace_back(v[c * i], v[c * i + 1], v[c * i + 2], c == 4 ? v[c * i + 3] : 1.0f);
   }
   return soup;
+}
+
+// Per triangle, the _SOURCE_FACE value of its first corner (meshrepair
+// writes it on every corner of the face); empty without the attribute.
+std::vector<std::int64_t> face_sources(const AccessorReader& reader, const tinygltf::Primitive& primitive,
+                                       const std::vector<Triangle>& triangles, std::size_t vertex_count) {
+  const int accessor = attribute(primitive, kSourceFaceAttribute);
+  if (accessor < 0) return {};
+  int components = 0;
+  const std::vector<float> values = reader.read_floats(accessor, {1}, components, kSourceFaceAttribute);
+  if (values.size() != vertex_count)
+    reader.fail(std::string(kSourceFaceAttribute) + " accessor " + std::to_string(accessor) + " has " +
+                std::to_string(values.size()) + " elements but POSITION has " + std::to_string(vertex_count));
+  std::vector<std::int64_t> sources;
+  sources.reserve(triangles.size());
+  for (const Triangle& t : triangles) {
+    const float value = values[t[0]];
+    sources.push_back(std::isfinite(value) && value >= -1.0f && value <= 16777216.0f ? std::int64_t(value)
+                                                                                     : -1);
+  }
+  return sources;
 }
 
 // Triangles of one primitive, following the glTF spec's definitions of each mode.
@@ -151,7 +173,8 @@ class GltfReader {
       const std::size_t vertex_count = accessors_.count(key[0], "POSITION");
       const std::vector<Triangle> triangles =
           assemble_triangles(primitive_indices(accessors_, primitive, vertex_count), primitive.mode);
-      builder_.add_triangles(triangles, found->second, material, transform);
+      builder_.add_triangles(triangles, found->second, material, transform,
+                             face_sources(accessors_, primitive, triangles, vertex_count));
     }
   }
 

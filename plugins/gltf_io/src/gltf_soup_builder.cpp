@@ -81,7 +81,7 @@ Index SoupBuilder::add_vertices(const TriangleSoup& piece, const Transform& tran
 }
 
 void SoupBuilder::add_triangles(const std::vector<Triangle>& triangles, Index base, int material,
-                                const Transform& transform) {
+                                const Transform& transform, const std::vector<std::int64_t>& sources) {
   check_growth(0, triangles.size());
   for (Triangle t : triangles) {
     for (Index& v : t) v += base;
@@ -89,6 +89,11 @@ void SoupBuilder::add_triangles(const std::vector<Triangle>& triangles, Index ba
     soup_.triangles.push_back(t);
   }
   face_materials_.insert(face_materials_.end(), triangles.size(), material);
+  any_has_sources_ = any_has_sources_ || !sources.empty();
+  if (sources.empty())
+    face_sources_.insert(face_sources_.end(), triangles.size(), -1);
+  else
+    face_sources_.insert(face_sources_.end(), sources.begin(), sources.end());
 }
 
 TriangleSoup SoupBuilder::finish(const std::vector<std::string>& material_names) {
@@ -103,6 +108,7 @@ TriangleSoup SoupBuilder::finish(const std::vector<std::string>& material_names)
     soup_.face_regions.reserve(face_materials_.size());
     for (int m : face_materials_) soup_.face_regions.push_back(m >= 0 ? m : default_region);
   }
+  if (any_has_sources_) soup_.face_sources = std::move(face_sources_);
   return std::move(soup_);
 }
 

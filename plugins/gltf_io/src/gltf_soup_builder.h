@@ -32,8 +32,9 @@ class SoupBuilder {
   Index add_vertices(const TriangleSoup& piece, const Transform& transform);
 
   /// Appends triangles whose indices are relative to `base`; `material` -1 = none.
+  /// `sources`: one face source per triangle (_SOURCE_FACE), or empty.
   void add_triangles(const std::vector<Triangle>& triangles, Index base, int material,
-                     const Transform& transform);
+                     const Transform& transform, const std::vector<std::int64_t>& sources = {});
 
   TriangleSoup finish(const std::vector<std::string>& material_names);
 
@@ -47,6 +48,8 @@ class SoupBuilder {
   bool any_has_uvs_ = false;
   bool any_has_colors_ = false;
   std::vector<int> face_materials_;
+  std::vector<std::int64_t> face_sources_;  ///< -1 for faces of primitives without them
+  bool any_has_sources_ = false;
 };
 
 }  // namespace mr::plugins::gltf

@@ -66,7 +66,37 @@ FloatArrays float_arrays(const TriangleSoup& soup) {
   for (const Vec3f& n : soup.normals) a.normals.insert(a.normals.end(), {n.x(), n.y(), n.z()});
   for (const Vec2f& uv : soup.uvs) a.uvs.insert(a.uvs.end(), {uv.x(), uv.y()});
   for (const Vec4f& c : soup.colors) a.colors.insert(a.colors.end(), {c[0], c[1], c[2], c[3]});
+  if (soup.has_face_sources()) {
+    a.sources.assign(soup.num_vertices(), -1.0f);
+    for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
+      const std::int64_t source = soup.face_sources[f];
+      if (source < -1 || source > (std::int64_t{1} << 24))
+        throw RunError("face source " + std::to_string(source) +
+                       " does not fit exactly in the glTF float of " + kSourceFaceAttribute);
+      for (Index v : soup.triangles[f]) a.sources[v] = static_cast<float>(source);
+    }
+  }
   return a;
+}
+
+TriangleSoup with_own_vertices(const TriangleSoup& soup) {
+  TriangleSoup out = soup;
+  out.positions.clear();
+  out.normals.clear();
+  out.uvs.clear();
+  out.colors.clear();
+  for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
+    Triangle& t = out.triangles[f];
+    for (Index& v : t) {
+      const Index own = static_cast<Index>(out.positions.size());
+      out.positions.push_back(soup.positions[v]);
+      if (soup.has_normals()) out.normals.push_back(soup.normals[v]);
+      if (soup.has_uvs()) out.uvs.push_back(soup.uvs[v]);
+      if (soup.has_colors()) out.colors.push_back(soup.colors[v]);
+      v = own;
+    }
+  }
+  return out;
 }
 
 std::vector<RegionGroup> group_by_region(const TriangleSoup& soup) {

@@ -15,12 +15,23 @@ namespace mr::plugins::gltf {
 /// normalized; non-finite texture coordinates set to 0; colours clamped.
 TriangleSoup sanitized_for_gltf(const TriangleSoup& soup);
 
+/// The vertex attribute that carries TriangleSoup::face_sources: glTF has
+/// per-vertex attributes only, so each face gets vertices of its own
+/// (with_own_vertices), and an application-specific name starts with "_".
+/// A float: exact for face numbers up to 2^24.
+inline constexpr const char* kSourceFaceAttribute = "_SOURCE_FACE";
+
+/// `soup` with three vertices of its own per face (attributes copied).
+TriangleSoup with_own_vertices(const TriangleSoup& soup);
+
 struct FloatArrays {
   std::vector<float> positions, normals, uvs, colors;  ///< flattened, 3/3/2/4 per vertex
-  std::array<float, 3> min{}, max{};                   ///< of the float positions as written
+  std::vector<float> sources;         ///< per vertex, its face's source (with_own_vertices first)
+  std::array<float, 3> min{}, max{};  ///< of the float positions as written
 };
 
-/// Throws RunError if a coordinate does not fit in a float.
+/// Throws RunError if a coordinate does not fit in a float, or a face
+/// source in a float exactly.
 FloatArrays float_arrays(const TriangleSoup& soup);
 
 struct RegionGroup {

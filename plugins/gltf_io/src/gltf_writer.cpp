@@ -90,6 +90,7 @@ class DocumentBuilder {
     if (soup_.has_normals()) add("NORMAL", a.normals, "VEC3");
     if (soup_.has_uvs()) add("TEXCOORD_0", a.uvs, "VEC2");
     if (soup_.has_colors()) add("COLOR_0", a.colors, "VEC4");
+    if (soup_.has_face_sources()) add(kSourceFaceAttribute, a.sources, "SCALAR");
 
     const int component = index_component_type(n);
     const std::size_t index_size = component == component_unsigned_short ? 2 : 4;
@@ -176,11 +177,20 @@ class DocumentBuilder {
   json materials_ = json::array();
 };
 
+TriangleSoup without_face_sources(TriangleSoup soup) {
+  soup.face_sources.clear();
+  return soup;
+}
+
 }  // namespace
 
 void write_gltf(const TriangleSoup& soup, const std::filesystem::path& path, const io::WriteOptions& options,
                 bool glb) {
-  const TriangleSoup clean = sanitized_for_gltf(soup);
+  // Face sources need vertices of their own per face; Draco reorders faces
+  // and does not carry them.
+  TriangleSoup clean = sanitized_for_gltf(soup);
+  if (clean.has_face_sources())
+    clean = options.draco.compress_gltf ? without_face_sources(clean) : with_own_vertices(clean);
   DocumentBuilder builder(clean, options.draco);
   json doc = builder.build();
   const std::vector<char>& bin = builder.bytes();

@@ -111,6 +111,30 @@ TEST_CASE("a cube with attributes and regions survives .glb and .gltf", "[gltf]"
   CHECK(dir.files() == std::vector<std::string>{"cube.glb", "cube.gltf"});  // one file each
 }
 
+TEST_CASE("face sources round-trip as the _SOURCE_FACE attribute, each face with its own vertices",
+          "[gltf]") {
+  const io::Registry registry = gltf_registry();
+  test::TempDir dir("gltf_sources");
+  TriangleSoup cube = attributed_cube();
+  cube.face_sources = {7, 3, -1, 0, 11, 11, 5, 1, 2, 9, 4, 16777216};
+  io::write_surface(registry, cube, dir / "cube.glb");
+  const nlohmann::json json = glb_json(dir / "cube.glb");
+  CHECK(json["meshes"][0]["primitives"][0]["attributes"].contains("_SOURCE_FACE"));
+  const TriangleSoup back = io::read_surface(registry, dir / "cube.glb");
+  REQUIRE(back.num_triangles() == cube.num_triangles());
+  CHECK(back.num_vertices() == 3 * cube.num_triangles());
+  CHECK(back.face_sources == cube.face_sources);  // regions in order already: the face order is kept
+  for (std::size_t f = 0; f < cube.num_triangles(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      CHECK(back.positions[back.triangles[f][k]] == cube.positions[cube.triangles[f][k]]);
+      CHECK(back.uvs[back.triangles[f][k]] == cube.uvs[cube.triangles[f][k]]);
+    }
+
+  cube.face_sources[0] = std::int64_t{1} << 25;  // past what a float holds exactly
+  CHECK_THROWS_WITH(io::write_surface(registry, cube, dir / "big.glb"), Catch::Contains("_SOURCE_FACE"));
+  CHECK(!std::filesystem::exists(dir / "big.glb"));
+}
+
 TEST_CASE("a soup without attributes or regions round-trips plainly", "[gltf]") {
   const io::Registry registry = gltf_registry();
   test::TempDir dir("gltf_plain");

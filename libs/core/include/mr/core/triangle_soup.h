@@ -29,6 +29,10 @@ struct TriangleSoup {
   /// the images their textures use.
   std::vector<Material> materials;
   std::vector<EncodedImage> images;
+  /// Optional per-face source: the face of another mesh this one came from
+  /// (meshrepair's provenance; -1: none), empty or triangles.size() entries.
+  /// glTF stores it as the _SOURCE_FACE vertex attribute.
+  std::vector<std::int64_t> face_sources;
 
   std::size_t num_vertices() const { return positions.size(); }
   std::size_t num_triangles() const { return triangles.size(); }
@@ -36,6 +40,7 @@ struct TriangleSoup {
   bool has_uvs() const { return !uvs.empty(); }
   bool has_colors() const { return !colors.empty(); }
   bool has_face_regions() const { return !face_regions.empty(); }
+  bool has_face_sources() const { return !face_sources.empty(); }
   /// The positions of the corners of triangle f.
   std::array<Vec3d, 3> corners(std::size_t f) const {
     const Triangle& t = triangles[f];
@@ -44,7 +49,8 @@ struct TriangleSoup {
 
   /// Appends `other`, offsetting its indices. Attributes present in only one
   /// of the two soups are dropped (a soup carries an attribute for all or none).
-  /// Materials are this soup's, or other's when this one has none.
+  /// Materials are this soup's, or other's when this one has none. Face
+  /// sources of a soup without them are -1.
   void append(const TriangleSoup& other);
 };
 
