@@ -12,6 +12,7 @@
 #include <mr/repair/round_to_grid.h>
 
 #include <extract_boundary.h>
+#include <format_convert.h>
 #include <meshrepair.h>
 
 #include <catch2/catch.hpp>
@@ -234,6 +235,41 @@ TEST_CASE("meshrepair's STL, GLB and Draco outputs stay watertight where float32
       const nlohmann::json j = nlohmann::json::parse(stats_file);
       REQUIRE(j["written_file"]["watertight"] == true);
       REQUIRE(j["repair"]["rounded_vertices"].get<int>() > 0);
+    }
+  }
+}
+
+TEST_CASE("format-convert keeps a watertight surface watertight in float32, with the UVs of its seams",
+          "[grid][e2e]") {
+  // Two cubes 2e-9 apart: watertight in doubles, merged when rounded to
+  // float32 naively. One corner is split into two vertices with different
+  // UVs (a seam), as textured assets have.
+  const io::Registry registry = io::make_default_registry();
+  test::TempDir dir("format_convert_grid");
+  TriangleSoup input = cubes_apart_by(2e-9, Vec3d(0.123456789, -0.31415926, 0.27182818));
+  for (const Vec3d& p : input.positions) input.uvs.emplace_back(float(p.x()), float(p.y()));
+  Triangle& first = input.triangles[0];
+  input.positions.push_back(input.positions[first[0]]);
+  input.uvs.emplace_back(0.5f, 0.5f);
+  first[0] = Index(input.positions.size() - 1);
+  REQUIRE(check::check_surface(input).watertight());
+  REQUIRE_FALSE(check::check_surface(rounded_naively(input, CoordinateGrid::float32())).watertight());
+  io::write_surface(registry, input, dir / "in.obj");
+  for (const std::string name : {"out.glb", "out.stl"}) {
+    CAPTURE(name);
+    const test::ToolRun run =
+        test::run_format_convert({(dir / "in.obj").string(), (dir / name).string(), "-q"});
+    CAPTURE(run.err);
+    REQUIRE(run.exit_code == 0);
+    const TriangleSoup out = io::read_surface(registry, dir / name);
+    const check::SurfaceReport r = check::check_surface(out);
+    CAPTURE(check::watertight_failures(r));
+    REQUIRE(r.watertight());
+    REQUIRE(r.components == 2);
+    if (name == "out.glb") {  // the seam's two vertices and their UVs stay
+      REQUIRE(out.positions.size() == input.positions.size());
+      REQUIRE(out.uvs.size() == input.uvs.size());
+      CHECK(out.uvs.back() == Vec2f(0.5f, 0.5f));
     }
   }
 }

@@ -29,11 +29,13 @@ struct SurfaceWrite {
   check::WrittenFileReport written;  ///< of the written file, when watertight
 };
 
-/// Writes `surface` to `path`. A surface watertight in doubles goes onto
-/// the grid the format stores (repair::round_to_grid, Draco's grid fixed
-/// here) and the file is read back and checked before it is renamed into
-/// place (mr::RunError if it is not watertight); any other surface (open,
-/// pinched, inward) is written as it is. Where no place on a Draco grid is
+/// Writes `surface` to `path`. A surface watertight in doubles (after
+/// welding identical positions) goes onto the grid the format stores
+/// (repair::round_to_grid on the welded surface, Draco's grid fixed here;
+/// vertices split at seams keep their attributes unless rounding had to
+/// collapse vertices) and the file is read back and checked before it is
+/// renamed into place (mr::RunError if it is not watertight); any other
+/// surface (open, pinched, inward) is written as it is. Where no place on a Draco grid is
 /// left for some vertex, the grid gets two more bits (up to 30) unless
 /// `finer_draco_grid` is false (the user chose the bits).
 SurfaceWrite write_surface_keeping_watertight(const io::Registry& registry, TriangleSoup surface,

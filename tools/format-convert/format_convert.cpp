@@ -1,4 +1,5 @@
 #include "format_convert.h"
+#include "surface_output.h"
 
 #include <mr/cli/run_tool.h>
 #include <mr/core/errors.h>
@@ -22,6 +23,7 @@ struct ConvertOptions {
   int threads = 0;
   bool quiet = false;
   bool verbose = false;
+  bool draco_bits_given = false;  ///< else a finer Draco grid may be taken to keep a surface watertight
 };
 
 // What was converted, for -v and --stats.
@@ -75,7 +77,10 @@ cli::ToolSpec make_spec(ConvertOptions& o, const io::Registry& registry) {
       {"--draco", "", "", "compress glTF/GLB meshes with KHR_draco_mesh_compression",
        [&](const std::string&) { w.draco.compress_gltf = true; }},
       {"--draco-position-bits", "", "N", "Draco position quantization bits (default 16)",
-       [&](const std::string& v) { w.draco.position_bits = parse_int("--draco-position-bits", v, 1, 30); }},
+       [&](const std::string& v) {
+         w.draco.position_bits = parse_int("--draco-position-bits", v, 1, 30);
+         o.draco_bits_given = true;
+       }},
       {"--draco-normal-bits", "", "N", "Draco normal quantization bits (default 10)",
        [&](const std::string& v) { w.draco.normal_bits = parse_int("--draco-normal-bits", v, 1, 30); }},
       {"--draco-uv-bits", "", "N", "Draco texture coordinate quantization bits (default 12)",
@@ -132,7 +137,7 @@ ConvertReport convert(const io::Registry& registry, const std::string& in, const
     report.elements = soup.triangles.size();
     if (o.verbose && !o.quiet) note_names_not_utf8(soup, in, err);
     start = std::chrono::steady_clock::now();
-    io::write_surface(registry, soup, out, o.write);
+    write_surface_keeping_watertight(registry, soup, out, o.write, !o.draco_bits_given);
   }
   report.seconds_write = seconds_since(start);
   return report;

@@ -24,7 +24,7 @@ struct GridRoundingOptions {
   /// How far the search goes when the nearest grid point is refused: grid
   /// points up to this many strides from it along each axis, with strides
   /// of 1, 4, 16, ... steps up to max_stride.
-  int max_steps = 4;
+  int max_steps = 8;
   int max_stride = 64;
   /// Sweeps over the vertices not yet placed (a refused vertex may fit once
   /// its neighbours have moved).
