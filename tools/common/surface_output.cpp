@@ -1,12 +1,11 @@
 #include "surface_output.h"
 
 #include <mr/check/surface_check.h>
+#include <mr/core/weld.h>
 #include <mr/io/mesh_io.h>
 
 #include <algorithm>
-#include <bit>
 #include <cstdint>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -50,39 +49,6 @@ SurfaceWrite write_watertight_surface(const io::Registry& registry, TriangleSoup
   return result;
 }
 
-namespace {
-
-// `soup` with vertices of equal position merged (first occurrence order;
-// -0 and +0 alike), and the merged index of each of its vertices.
-struct WeldedByPosition {
-  TriangleSoup surface;
-  std::vector<Index> vertex;
-};
-
-WeldedByPosition welded_by_position(const TriangleSoup& soup) {
-  struct Hash {
-    std::size_t operator()(const Vec3d& p) const {
-      std::size_t h = 0;
-      for (int k = 0; k < 3; ++k) h = h * 0x9E3779B97F4A7C15ull + std::bit_cast<std::uint64_t>(p[k] + 0.0);
-      return h;
-    }
-  };
-  WeldedByPosition welded;
-  std::unordered_map<Vec3d, Index, Hash> index_of;
-  for (const Vec3d& p : soup.positions) {
-    const auto [it, added] = index_of.try_emplace(p, static_cast<Index>(welded.surface.positions.size()));
-    if (added) welded.surface.positions.push_back(p);
-    welded.vertex.push_back(it->second);
-  }
-  for (Triangle t : soup.triangles) {
-    for (Index& v : t) v = welded.vertex[v];
-    welded.surface.triangles.push_back(t);
-  }
-  return welded;
-}
-
-}  // namespace
-
 SurfaceWrite write_surface_keeping_watertight(const io::Registry& registry, TriangleSoup surface,
                                               const std::string& path, io::WriteOptions options,
                                               bool finer_draco_grid) {
@@ -90,19 +56,20 @@ SurfaceWrite write_surface_keeping_watertight(const io::Registry& registry, Tria
     io::write_surface(registry, surface, path, options);
     return {};
   }
-  WeldedByPosition welded = welded_by_position(surface);
-  if (welded.surface.positions.size() == surface.positions.size())
+  std::vector<Index> welded_index;
+  TriangleSoup welded = weld_identical_vertices(surface, welded_index);
+  if (welded.positions.size() == surface.positions.size())
     return write_watertight_surface(registry, std::move(surface), path, std::move(options), finer_draco_grid);
   // Seams (UVs, normals) split positions: the welded surface is rounded and
   // every vertex of the original takes its position's place, unless the
   // rounding had to collapse vertices; then the welded surface is written.
-  const std::size_t welded_vertices = welded.surface.positions.size();
-  return write_watertight_surface(registry, std::move(welded.surface), path, std::move(options),
-                                  finer_draco_grid, [&](const TriangleSoup& rounded, const CoordinateGrid&) {
+  const std::size_t welded_vertices = welded.positions.size();
+  return write_watertight_surface(registry, std::move(welded), path, std::move(options), finer_draco_grid,
+                                  [&](const TriangleSoup& rounded, const CoordinateGrid&) {
                                     if (rounded.positions.size() != welded_vertices) return rounded;
                                     TriangleSoup out = surface;
                                     for (std::size_t v = 0; v < out.positions.size(); ++v)
-                                      out.positions[v] = rounded.positions[welded.vertex[v]];
+                                      out.positions[v] = rounded.positions[welded_index[v]];
                                     return out;
                                   });
 }

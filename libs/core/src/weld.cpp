@@ -28,10 +28,15 @@ Bits bits_of(const Vec3d& p) {
 }  // namespace
 
 TriangleSoup weld_identical_vertices(const TriangleSoup& soup) {
+  std::vector<Index> welded_index;
+  return weld_identical_vertices(soup, welded_index);
+}
+
+TriangleSoup weld_identical_vertices(const TriangleSoup& soup, std::vector<Index>& remap) {
   TriangleSoup welded;
   std::unordered_map<Bits, Index, BitsHash> first_index;
   first_index.reserve(soup.positions.size());
-  std::vector<Index> remap(soup.positions.size());
+  remap.assign(soup.positions.size(), 0);
   for (std::size_t i = 0; i < soup.positions.size(); ++i) {
     const auto [it, inserted] =
         first_index.try_emplace(bits_of(soup.positions[i]), static_cast<Index>(welded.positions.size()));
