@@ -22,12 +22,18 @@ struct InputParts {
   std::map<std::int32_t, std::string> names;
 };
 
-// Parts by face region: label = region id + 1, named by the region's name.
-InputParts parts_by_region(const TriangleSoup& input) {
-  InputParts parts;
+// The distinct face region ids of `input`, ascending.
+std::vector<std::int32_t> region_ids(const TriangleSoup& input) {
   std::vector<std::int32_t> ids = input.face_regions;
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  return ids;
+}
+
+// Parts by face region: label = region id + 1, named by the region's name.
+InputParts parts_by_region(const TriangleSoup& input) {
+  InputParts parts;
+  const std::vector<std::int32_t> ids = region_ids(input);
   for (const std::int32_t id : ids) {
     parts.labels.push_back(id + 1);
     if (id >= 0 && std::size_t(id) < input.region_names.size() && !input.region_names[id].empty())
@@ -152,15 +158,9 @@ std::vector<std::int32_t> label_points_by_winding(const TriangleSoup& input, std
   return labels;
 }
 
-std::size_t distinct_regions(const TriangleSoup& input) {
-  std::vector<std::int32_t> ids = input.face_regions;
-  std::sort(ids.begin(), ids.end());
-  return std::size_t(std::unique(ids.begin(), ids.end()) - ids.begin());
-}
-
 TetLabels resolve(TetLabels mode, const TriangleSoup& input) {
   if (mode != TetLabels::automatic) return mode;
-  const std::size_t regions = distinct_regions(input);
+  const std::size_t regions = region_ids(input).size();
   return regions >= 2 && regions <= kMaxLabelledParts ? TetLabels::parts : TetLabels::none;
 }
 
@@ -169,15 +169,15 @@ TetLabels resolve(TetLabels mode, const TriangleSoup& input) {
 PartLabels part_labels(const Mesh& mesh, std::span<const char> keep, const TriangleSoup& input,
                        TetLabels mode, WindingRule rule) {
   PartLabels result;
-  result.mode = resolve(mode, input);
+  mode = resolve(mode, input);
   result.labels.assign(mesh.tet_slots(), 0);
   for (Index t = 0; t < mesh.tet_slots(); ++t)
     if (keep[t]) result.labels[t] = 1;
-  if (result.mode == TetLabels::none) return result;
+  if (mode == TetLabels::none) return result;
 
   InputParts parts;
-  if (result.mode == TetLabels::parts) parts = parts_by_region(input);
-  if (result.mode == TetLabels::components) parts = parts_by_component(input);
+  if (mode == TetLabels::parts) parts = parts_by_region(input);
+  if (mode == TetLabels::components) parts = parts_by_component(input);
   if (parts.labels.size() > kMaxLabelledParts) {
     throw RunError("the input has " + std::to_string(parts.labels.size()) +
                    " parts; tets can be labelled by at most " + std::to_string(kMaxLabelledParts));
@@ -191,7 +191,7 @@ PartLabels part_labels(const Mesh& mesh, std::span<const char> keep, const Trian
     point_of_region[r] = std::int32_t(points.size());
     points.push_back(tet_centroid(mesh, largest[r]));
   }
-  const std::vector<std::int32_t> point_labels = result.mode == TetLabels::winding
+  const std::vector<std::int32_t> point_labels = mode == TetLabels::winding
                                                      ? label_points_by_winding(input, points, rule)
                                                      : label_points(input, parts, points, rule);
   for (Index t = 0; t < mesh.tet_slots(); ++t)

@@ -23,7 +23,6 @@ inline constexpr std::size_t kMaxLabelledParts = 1024;
 struct PartLabels {
   std::vector<std::int32_t> labels;           ///< per tet slot; 0 where keep[t] == 0
   std::map<std::int32_t, std::string> names;  ///< for labels that have one
-  TetLabels mode = TetLabels::none;           ///< the mode used (automatic resolved)
 };
 
 /// Labels every tet with keep[t] != 0. Tets connected through faces that
