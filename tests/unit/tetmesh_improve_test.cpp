@@ -258,6 +258,98 @@ TEST_CASE("improve: same output for 1 and 2 threads", "[improve]") {
   CHECK(a.tets == b.tets);
 }
 
+// Per tet slot, kDropped for the tets outside the unit cube (by centroid).
+std::vector<char> dropped_outside_the_cube(const Mesh& mesh) {
+  std::vector<char> outside(mesh.tet_slots(), kWritten);
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    Vec3d centre = Vec3d::Zero();
+    for (const Index v : mesh.tet(t)) centre += mesh.position(v).approx / 4;
+    outside[t] = centre.minCoeff() < 0 || centre.maxCoeff() > 1 ? kDropped : kWritten;
+  }
+  return outside;
+}
+
+// The largest energy of the tets inside the unit cube (by centroid).
+double max_amips_inside_the_cube(const Mesh& mesh) {
+  const std::vector<char> outside = dropped_outside_the_cube(mesh);
+  double worst = 0;
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (!mesh.tet_alive(t) || outside[t] != kWritten) continue;
+    const Tet& c = mesh.tet(t);
+    worst = std::max(worst, check::amips_energy(mesh.position(c[0]).approx, mesh.position(c[1]).approx,
+                                                mesh.position(c[2]).approx, mesh.position(c[3]).approx));
+  }
+  return worst;
+}
+
+TEST_CASE("improve: dropped tets neither drive nor block the passes", "[improve]") {
+  Fixture whole, focused;
+  const ImproveStats all = improve_mesh(whole.mesh, *whole.envelope, options_with_threads(2));
+  TetPayload payload;
+  payload.fate = dropped_outside_the_cube(focused.mesh);
+  const ImproveStats inside = improve_mesh(focused.mesh, *focused.envelope, options_with_threads(2), payload);
+  REQUIRE(find_mesh_inconsistency(focused.mesh) == "");
+  CHECK(all_tets_positive_on_doubles(focused.mesh));
+  const TrackedSurface surface = tracked_surface(focused.mesh, focused.cube, *focused.envelope);
+  CHECK(surface.inside);
+  CHECK(surface.ids.size() == 12);
+  // The cube's tets reach the stop energy with less work; the tets around
+  // it (the damage put slivers there too) are left as they are.
+  CHECK(inside.written_max_amips < 10);
+  CHECK(max_amips_inside_the_cube(focused.mesh) < 10);
+  CHECK(inside.splits + inside.collapses + inside.smoothing_moves <
+        all.splits + all.collapses + all.smoothing_moves);
+  CHECK(inside.after.max_amips > all.after.max_amips);
+}
+
+TEST_CASE("improve: a value per tet follows the tets through every operation", "[improve]") {
+  // 1 inside the tracked cube, 0 outside: no operation moves a tet across
+  // a tracked face, so every tet made from one keeps the side it is on.
+  Fixture fixture;
+  TetPayload payload;
+  const std::vector<char> outside = dropped_outside_the_cube(fixture.mesh);
+  for (const char fate : outside) payload.value.push_back(fate == kDropped ? 0.0 : 1.0);
+  ImproveOptions options = options_with_threads(2);
+  options.target_edge_length = 0.15;  // splits as well as collapses and swaps
+  const ImproveStats stats = improve_mesh(fixture.mesh, *fixture.envelope, options, payload);
+  REQUIRE(find_mesh_inconsistency(fixture.mesh) == "");
+  CHECK(stats.splits > 0);
+  CHECK(stats.collapses > 0);
+  CHECK(stats.swaps_23 + stats.swaps_32 + stats.swaps_44 + stats.edge_removals > 0);
+  REQUIRE(payload.value.size() == fixture.mesh.tet_slots());
+  CHECK(payload.fate.empty());
+  const double margin = fixture.envelope->epsilon();
+  std::size_t inside = 0, wrong = 0;
+  for (Index t = 0; t < fixture.mesh.tet_slots(); ++t) {
+    if (!fixture.mesh.tet_alive(t)) continue;
+    Vec3d centre = Vec3d::Zero();
+    for (const Index v : fixture.mesh.tet(t)) centre += fixture.mesh.position(v).approx / 4;
+    const bool surely_in = centre.minCoeff() > margin && centre.maxCoeff() < 1 - margin;
+    const bool surely_out = centre.minCoeff() < -margin || centre.maxCoeff() > 1 + margin;
+    inside += payload.value[t] == 1.0;
+    wrong += (payload.value[t] == 1.0 && surely_out) || (payload.value[t] == 0.0 && surely_in);
+  }
+  CHECK(inside > 0);
+  CHECK(wrong == 0);
+}
+
+TEST_CASE("improve: a mesh dropped everywhere is left as it is", "[improve]") {
+  Fixture fixture;
+  const TetMesh before = to_tet_mesh(fixture.mesh);
+  TetPayload payload;
+  payload.fate.assign(fixture.mesh.tet_slots(), kDropped);
+  const ImproveStats stats = improve_mesh(fixture.mesh, *fixture.envelope, options_with_threads(2), payload);
+  CHECK(stats.passes == 0);
+  CHECK(stats.written_max_amips == 0);
+  const TetMesh after = to_tet_mesh(fixture.mesh);
+  CHECK(after.positions == before.positions);
+  CHECK(after.tets == before.tets);
+  payload.fate.pop_back();
+  CHECK_THROWS_AS(improve_mesh(fixture.mesh, *fixture.envelope, options_with_threads(2), payload),
+                  UsageError);
+}
+
 TEST_CASE("improve: locked vertices never move", "[improve]") {
   Fixture fixture;
   std::vector<std::pair<Index, Vec3d>> locked;

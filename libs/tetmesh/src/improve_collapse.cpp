@@ -156,6 +156,23 @@ bool open_edges_inside(const Workspace& ws, const std::vector<TrackedFace>& at_u
   return true;
 }
 
+// A collapse for quality may not raise the largest energy of the tets that
+// count above max(theirs before, the stop energy), and leaves no tet flat
+// on the doubles (infinite energy), counted or not.
+bool energy_allows(const Workspace& ws, std::span<const Index> star_u, std::span<const Tet> new_tets,
+                   std::span<const std::size_t> origin) {
+  double old_max = 0, new_max = 0;
+  for (const Index t : star_u) {
+    if (ws.counts(t)) old_max = std::max(old_max, tet_energy(ws.mesh, t));
+  }
+  for (std::size_t i = 0; i < new_tets.size(); ++i) {
+    const double e = max_energy(ws.mesh, std::span<const Tet>(&new_tets[i], 1));
+    if (!std::isfinite(e)) return false;
+    if (ws.counts(star_u[origin[i]])) new_max = std::max(new_max, e);
+  }
+  return new_max <= std::max(old_max, ws.stop_energy);
+}
+
 }  // namespace
 
 bool try_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal) {
@@ -170,20 +187,19 @@ bool try_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal) {
   if (uv_tets.empty() || vertex_on_hull(mesh, star_u, u)) return false;
 
   std::vector<Tet> new_tets;
-  for (const Index t : star_u) {
-    if (mesh.corner_of(t, v) >= 0) continue;
-    Tet moved = mesh.tet(t);
+  std::vector<std::size_t> origin;  // the tet of star_u each new tet was
+  for (std::size_t i = 0; i < star_u.size(); ++i) {
+    if (mesh.corner_of(star_u[i], v) >= 0) continue;
+    Tet moved = mesh.tet(star_u[i]);
     std::replace(moved.begin(), moved.end(), u, v);
     new_tets.push_back(moved);
+    origin.push_back(i);
   }
-  const double old_max = max_energy_of(mesh, star_u);
-  const double new_max = max_energy(mesh, new_tets);
-  if (goal == CollapseGoal::quality && new_max > std::max(old_max, ws.stop_energy)) return false;
   // Rounding only needs the exact test below: a new tet flat on the doubles
   // of its rational corners (a knot of cut points) becomes positive or is
   // checked again when they are rounded. Requiring finite energy here
   // refused nearly every collapse that would free a knot.
-  if (goal == CollapseGoal::quality && !std::isfinite(new_max)) return false;
+  if (goal == CollapseGoal::quality && !energy_allows(ws, star_u, new_tets, origin)) return false;
 
   const std::vector<Index> star_v = ws.star(v);
   const Link lu = vertex_link(mesh, star_u, u);
@@ -205,13 +221,14 @@ bool try_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal) {
     if (!open_edges_inside(ws, at_u, u, v)) return false;
   }
 
-  replace_tets(ws, star_u, new_tets, [u, v](const FaceKey& face, std::vector<FaceKey>& parents) {
-    parents.push_back(face);
+  const auto parents = [u, v](const FaceKey& face, std::vector<FaceKey>& out) {
+    out.push_back(face);
     if (!contains(face, v)) return;
     FaceKey before = face;
     std::replace(before.begin(), before.end(), v, u);
-    parents.push_back(face_key(before));
-  });
+    out.push_back(face_key(before));
+  };
+  replace_tets(ws, star_u, new_tets, parents, origin);
   mesh.remove_vertex(u);
   return true;
 }

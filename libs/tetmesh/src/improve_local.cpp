@@ -77,6 +77,15 @@ void Workspace::note_tets(std::span<const Index> tets) {
   }
 }
 
+std::vector<Index> Workspace::counted(std::span<const Index> tets) const {
+  std::vector<Index> out;
+  out.reserve(tets.size());
+  for (const Index t : tets) {
+    if (counts(t)) out.push_back(t);
+  }
+  return out;
+}
+
 void Workspace::note_vertex(Index v, double size) {
   if (v >= sizing.size()) sizing.resize(std::size_t(v) + 1, 1.0);
   sizing[v] = size;
@@ -164,9 +173,43 @@ std::vector<TrackedFace> tracked_faces_at(const Mesh& mesh, std::span<const Inde
   return faces;
 }
 
+namespace {
+
+// The payload of each new tet, read before the old slots are freed.
+TetPayload payload_of_new_tets(const Workspace& ws, std::span<const Index> old_tets, std::size_t new_tets,
+                               std::span<const std::size_t> origin) {
+  const TetPayload& old = ws.payload;
+  TetPayload out;
+  if (!old.fate.empty()) {
+    if (origin.empty()) {
+      char mildest = kDropped;
+      for (const Index t : old_tets) mildest = std::min(mildest, old.fate[t]);
+      out.fate.assign(new_tets, mildest);
+    } else {
+      for (std::size_t i = 0; i < new_tets; ++i) out.fate.push_back(old.fate[old_tets[origin[i]]]);
+    }
+  }
+  if (!old.value.empty()) {
+    for (std::size_t i = 0; i < new_tets; ++i)
+      out.value.push_back(old.value[old_tets[origin.empty() ? 0 : origin[i]]]);
+  }
+  return out;
+}
+
+template <class T>
+void store(std::vector<T>& per_slot, std::span<const Index> slots, const std::vector<T>& entries,
+           std::size_t slot_count) {
+  if (entries.empty()) return;
+  per_slot.resize(slot_count, T{});
+  for (std::size_t i = 0; i < slots.size(); ++i) per_slot[slots[i]] = entries[i];
+}
+
+}  // namespace
+
 std::vector<Index> replace_tets(Workspace& ws, std::span<const Index> old_tets, std::span<const Tet> new_tets,
-                                const ParentFaces& parents) {
+                                const ParentFaces& parents, std::span<const std::size_t> origin) {
   Mesh& mesh = ws.mesh;
+  const TetPayload carried = payload_of_new_tets(ws, old_tets, new_tets.size(), origin);
   const std::vector<TrackedFace> old_faces = tracked_faces(mesh, old_tets);
   std::vector<Index> around;
   for (const Index t : old_tets) {
@@ -181,6 +224,8 @@ std::vector<Index> replace_tets(Workspace& ws, std::span<const Index> old_tets, 
   std::vector<Index> added;
   added.reserve(new_tets.size());
   for (const Tet& t : new_tets) added.push_back(mesh.add_tet(t));
+  store(ws.payload.fate, added, carried.fate, mesh.tet_slots());
+  store(ws.payload.value, added, carried.value, mesh.tet_slots());
 
   std::vector<Index> linked = added;
   linked.insert(linked.end(), around.begin(), around.end());

@@ -41,6 +41,18 @@ class Workspace {
   double stop_energy;
   /// Per vertex slot: scale of the local target length (1: the global target).
   std::vector<double> sizing;
+  /// ImproveOptions::release_junctions.
+  bool release_junctions = false;
+  /// Per tet slot, its fate and value (TetPayload, improve.h); kept up to
+  /// date by replace_tets.
+  TetPayload payload;
+
+  /// Whether tet t's energy may block an operation (kWritten, kBesideWritten).
+  bool counts(Index t) const { return t >= payload.fate.size() || payload.fate[t] != kDropped; }
+  /// Whether tet t's energy drives the passes and the stop (kWritten).
+  bool drives(Index t) const { return t >= payload.fate.size() || payload.fate[t] == kWritten; }
+  /// The tets of `tets` whose energy counts.
+  std::vector<Index> counted(std::span<const Index> tets) const;
 
   /// The live tets around v, sorted. Empty for a vertex no tet uses.
   std::vector<Index> star(Index v);
@@ -90,10 +102,12 @@ using ParentFaces = std::function<void(const FaceKey& face, std::vector<FaceKey>
 
 /// Removes `old_tets`, adds `new_tets`, re-links them with the tets around
 /// the cavity and gives each new face the ids of its parents. The caller has
-/// checked that the new tets fill the cavity and are positive. Returns the
-/// new tets.
+/// checked that the new tets fill the cavity and are positive. A new tet
+/// takes the payload (Workspace::payload) of its origin (`origin[i]`, an
+/// index into old_tets); without origins, the mildest fate of the old tets
+/// and the value of the first. Returns the new tets.
 std::vector<Index> replace_tets(Workspace& ws, std::span<const Index> old_tets, std::span<const Tet> new_tets,
-                                const ParentFaces& parents);
+                                const ParentFaces& parents, std::span<const std::size_t> origin = {});
 
 /// True when a face of one of `tets` containing both a and b lies on the hull.
 bool edge_on_hull(const Mesh& mesh, std::span<const Index> tets, Index a, Index b);
@@ -141,7 +155,8 @@ struct SizingUpdate {
 /// grow back elsewhere, within [min_scale, 1].
 SizingUpdate update_sizing(Workspace& ws, std::span<const double> energy, double max_energy,
                            double min_scale);
-/// Energy of every live tet slot (0 for removed slots), in parallel.
-std::vector<double> tet_energies(const Mesh& mesh);
+/// Energy of every live tet slot that counts, or with `driving_only` that
+/// drives (0 for the others), in parallel.
+std::vector<double> tet_energies(const Workspace& ws, bool driving_only = false);
 
 }  // namespace mr::tetmesh::improve_detail

@@ -22,11 +22,13 @@ struct EdgeCandidate {
   Index a, b;
 };
 
-std::vector<std::array<Index, 2>> all_edges(const Mesh& mesh) {
+// The edges of the tets that count.
+std::vector<std::array<Index, 2>> counted_edges(const Workspace& ws) {
+  const Mesh& mesh = ws.mesh;
   std::vector<std::array<Index, 2>> edges;
   edges.reserve(mesh.num_tets() * 6);
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
-    if (!mesh.tet_alive(t)) continue;
+    if (!mesh.tet_alive(t) || !ws.counts(t)) continue;
     const Tet& c = mesh.tet(t);
     for (int i = 0; i < 4; ++i) {
       for (int j = i + 1; j < 4; ++j) edges.push_back({std::min(c[i], c[j]), std::max(c[i], c[j])});
@@ -46,7 +48,7 @@ double edge_length(const Mesh& mesh, Index a, Index b) {
 template <class Keep>
 std::vector<EdgeCandidate> edge_candidates(const Workspace& ws, Keep keep, bool longest_first) {
   std::vector<EdgeCandidate> out;
-  for (const auto& [a, b] : all_edges(ws.mesh)) {
+  for (const auto& [a, b] : counted_edges(ws)) {
     const double length = edge_length(ws.mesh, a, b);
     if (keep(length, ws.target(a, b))) out.push_back({length, a, b});
   }
@@ -80,12 +82,14 @@ std::vector<std::vector<Index>> colour_classes(const Mesh& mesh, const VertexTet
 
 }  // namespace
 
-std::vector<double> tet_energies(const Mesh& mesh) {
+std::vector<double> tet_energies(const Workspace& ws, bool driving_only) {
+  const Mesh& mesh = ws.mesh;
   std::vector<double> energy(mesh.tet_slots(), 0.0);
   tbb::parallel_for(tbb::blocked_range<Index>(0, Index(mesh.tet_slots()), 1024),
                     [&](const tbb::blocked_range<Index>& range) {
                       for (Index t = range.begin(); t != range.end(); ++t) {
-                        if (mesh.tet_alive(t)) energy[t] = tet_energy(mesh, t);
+                        if (mesh.tet_alive(t) && (driving_only ? ws.drives(t) : ws.counts(t)))
+                          energy[t] = tet_energy(mesh, t);
                       }
                     });
   return energy;
@@ -119,7 +123,7 @@ std::size_t collapse_pass(Workspace& ws) {
 SwapCounts swap_pass(Workspace& ws) {
   constexpr double kWorthSwapping = 4.0;  // a regular tet has 3
   const Mesh& mesh = ws.mesh;
-  const std::vector<double> energy = tet_energies(mesh);
+  const std::vector<double> energy = tet_energies(ws);
   std::vector<std::pair<double, Index>> bad;
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
     if (mesh.tet_alive(t) && energy[t] > kWorthSwapping) bad.emplace_back(-energy[t], t);

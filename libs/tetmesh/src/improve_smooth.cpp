@@ -79,13 +79,41 @@ struct Freedom {
   /// one input triangle: a crease of one surface, not a line where parts
   /// meet or cross, nor overlapping copies.
   bool one_sheet = false;
+  /// Its tracked faces form a fan with one or two faces on each surface
+  /// edge, one at least (the open boundary of one sheet), each on one input
+  /// triangle. `open_edges` are its neighbours across the edges of one face.
+  bool boundary_sheet = false;
+  std::vector<Index> open_edges;
   /// Moves anywhere, then back onto the nearest of `sources` (a creased
-  /// vertex of one sheet released where its tets are bad).
+  /// vertex released where its tets are bad).
   bool project = false;
   /// The input triangles its tracked faces lie on (filled for a creased
-  /// vertex of one sheet only).
+  /// vertex).
   std::vector<std::uint32_t> sources;
 };
+
+// Whether v's tracked faces are the open boundary of one sheet (Freedom::
+// boundary_sheet); fills `open_edges`.
+void find_boundary_sheet(const std::vector<TrackedFace>& faces, Index v, Freedom& out) {
+  std::vector<Index> neighbours;
+  for (const TrackedFace& f : faces) {
+    if (f.ids.size() != 1) return;
+    for (const Index w : f.key) {
+      if (w != v) neighbours.push_back(w);
+    }
+  }
+  std::sort(neighbours.begin(), neighbours.end());
+  std::vector<Index> open;
+  for (std::size_t i = 0; i < neighbours.size();) {
+    std::size_t j = i;
+    while (j < neighbours.size() && neighbours[j] == neighbours[i]) ++j;
+    if (j - i > 2) return;
+    if (j - i == 1) open.push_back(neighbours[i]);
+    i = j;
+  }
+  out.boundary_sheet = !open.empty();
+  out.open_edges = std::move(open);
+}
 
 Vec3d unit_normal(const Mesh& mesh, const FaceKey& f) {
   const Vec3d& a = mesh.position(f[0]).approx;
@@ -160,8 +188,8 @@ Freedom freedom_of(const Mesh& mesh, Index v, std::span<const Index> star) {
     out.tangent = false;
     out.tracked.clear();
     for (const TrackedFace& f : faces) out.tracked.push_back(f.key);
-    // Only a creased vertex of one sheet may be released and projected.
-    if (out.creased && out.one_sheet) {
+    if (out.creased) {
+      find_boundary_sheet(faces, v, out);
       for (const TrackedFace& f : faces) out.sources.insert(out.sources.end(), f.ids.begin(), f.ids.end());
       std::sort(out.sources.begin(), out.sources.end());
       out.sources.erase(std::unique(out.sources.begin(), out.sources.end()), out.sources.end());
@@ -224,14 +252,32 @@ Vec3d step_direction(const EnergyTerms& at, const Freedom& freedom, double scale
   return -g.normalized() * (0.1 * scale);
 }
 
-// Accepts p when it keeps the star valid and its tracked faces inside.
+// Accepts p when it keeps the star valid and its tracked faces inside, and,
+// for a released vertex, the open boundary edges at v inside the envelope
+// of the input's open edges (seed 3.4: a boundary may not drift across the
+// surface).
 bool valid_position(const Workspace& ws, Index v, std::span<const Index> star, const Vec3d& p,
                     const Freedom& freedom) {
   std::vector<Tet> tets;
   tets.reserve(star.size());
   for (const Index t : star) tets.push_back(ws.mesh.tet(t));
   const HybridPoint at(p);
-  return all_positive(ws.mesh, tets, {v, &at}) && faces_inside(ws, freedom.tracked, {v, &at});
+  if (!all_positive(ws.mesh, tets, {v, &at}) || !faces_inside(ws, freedom.tracked, {v, &at})) return false;
+  if (!freedom.project || freedom.open_edges.empty()) return true;
+  if (ws.open_boundary == nullptr) return false;
+  return std::all_of(freedom.open_edges.begin(), freedom.open_edges.end(),
+                     [&](Index x) { return ws.open_boundary->is_inside(p, ws.mesh.position(x).approx); });
+}
+
+// A creased vertex may be released where its tets are bad: on a crease of
+// one sheet, at the open boundary of one (its boundary edges checked, see
+// valid_position), or anywhere when asked (ImproveOptions::release_junctions).
+// Where parts meet, projected onto one part's triangle, it could turn the
+// other part's faces over for a filter orienting tracked faces by geometry
+// (manifold/openscad-nonmanifold-crash left the envelope by 19 eps).
+bool releasable(const Workspace& ws, const Freedom& freedom) {
+  if (!freedom.creased || ws.triangles == nullptr) return false;
+  return freedom.one_sheet || freedom.boundary_sheet || ws.release_junctions;
 }
 
 double average_edge(const std::vector<Opposite>& tets, const Vec3d& p) {
@@ -244,12 +290,10 @@ double average_edge(const std::vector<Opposite>& tets, const Vec3d& p) {
 
 bool try_smooth(const Workspace& ws, Index v, std::span<const Index> star) {
   Freedom freedom = freedom_of(ws.mesh, v, star);
-  // Vertices where parts meet stay: projected onto one part's triangle,
-  // the other part's faces there turned over for the filter's winding
-  // number (manifold/openscad-nonmanifold-crash left the envelope by 19 eps).
-  const bool releasable = freedom.creased && freedom.one_sheet && ws.triangles != nullptr;
-  if (freedom.fixed && !releasable) return false;
-  const std::vector<Opposite> tets = opposites(ws.mesh, v, star);
+  if (freedom.fixed && !releasable(ws, freedom)) return false;
+  // The energy of the tets that count; every tet of the star stays positive.
+  const std::vector<Opposite> tets = opposites(ws.mesh, v, ws.counted(star));
+  if (tets.empty()) return false;
   const Vec3d p0 = ws.mesh.position(v).approx;
   const EnergyTerms before = star_energy(p0, tets, true);
   if (!before.finite) return false;

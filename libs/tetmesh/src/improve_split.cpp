@@ -38,10 +38,12 @@ Index try_split(Workspace& ws, Index a, Index b, const HybridPoint& at, bool che
   if (old_tets.empty()) return kNoVertex;
 
   std::vector<Tet> new_tets;
+  std::vector<std::size_t> origin;  // each old tet becomes two
   new_tets.reserve(old_tets.size() * 2);
-  for (const Index t : old_tets) {
-    new_tets.push_back(replaced(mesh.tet(t), a, kNewVertex));
-    new_tets.push_back(replaced(mesh.tet(t), b, kNewVertex));
+  for (std::size_t i = 0; i < old_tets.size(); ++i) {
+    new_tets.push_back(replaced(mesh.tet(old_tets[i]), a, kNewVertex));
+    new_tets.push_back(replaced(mesh.tet(old_tets[i]), b, kNewVertex));
+    origin.insert(origin.end(), {i, i});
   }
   const Override moved{kNewVertex, &at};
   if (!all_positive(mesh, new_tets, moved)) return kNoVertex;
@@ -69,7 +71,7 @@ Index try_split(Workspace& ws, Index a, Index b, const HybridPoint& at, bool che
   const double size_b = b < ws.sizing.size() ? ws.sizing[b] : 1.0;
   ws.note_vertex(m, 0.5 * (size_a + size_b));
   for (Tet& t : new_tets) std::replace(t.begin(), t.end(), kNewVertex, m);
-  replace_tets(ws, old_tets, new_tets, split_parents(a, b, m));
+  replace_tets(ws, old_tets, new_tets, split_parents(a, b, m), origin);
   return m;
 }
 

@@ -1,6 +1,7 @@
 #include <mr/tetmesh/tetrahedralize.h>
 
 #include "defect_faces.h"
+#include "filter_preview.h"
 #include "part_labels.h"
 #include "regions.h"
 #include "rounding_stage.h"
@@ -192,15 +193,34 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
   return embedding;
 }
 
-void improve(Mesh& mesh, const SurfaceBounds& bounds, const DerivedParameters& derived, int max_passes,
-             const PipelineOptions& options, PipelineStats& stats, const Logger& logger) {
+// Improvement, on the tets that will be written when the filter runs
+// (TetFate, improve.h). Returns the filter's winding number per tet slot
+// when it was decided by region before improvement and carried through it
+// (empty otherwise): the tracked surface's orientation is guessed from
+// geometry, and faces that improvement moved and flattened made a closed
+// input's tracked surface open (trimesh/counter.unitsmm: 3 to 6 edges), so
+// the filter fell back to per-tet numbers and its boundary left the
+// envelope where the surface had opened.
+std::vector<double> improve(Mesh& mesh, const SurfaceBounds& bounds, std::span<const char> left_out,
+                            const DerivedParameters& derived, int max_passes, const PipelineOptions& options,
+                            PipelineStats& stats, const Logger& logger) {
   StageTimer timer(stats, "improve", logger);
   ImproveOptions improve_options;
   improve_options.target_edge_length = derived.edge_length;
   improve_options.stop_energy = options.tetrahedralize.stop_energy;
   improve_options.max_passes = max_passes;
   improve_options.threads = options.tetrahedralize.threads;
-  const ImproveStats improved = improve_mesh(mesh, bounds, improve_options, logger);
+  TetPayload payload;
+  bool by_region = false;
+  if (options.filter && bounds.triangles != nullptr) {
+    detail::FilterPreview preview = detail::preview_filter(mesh, *bounds.triangles, left_out);
+    by_region = preview.by_region;
+    if (!options.keep_rejected) payload.fate = detail::fates_from_winding(mesh, preview.winding);
+    if (by_region) payload.value = std::move(preview.winding);
+    improve_options.release_junctions = by_region;
+    count(timer, "dropped_tets", std::size_t(std::count(payload.fate.begin(), payload.fate.end(), kDropped)));
+  }
+  const ImproveStats improved = improve_mesh(mesh, bounds, improve_options, payload, logger);
   count(timer, "passes", static_cast<std::size_t>(improved.passes));
   count(timer, "splits", improved.splits);
   count(timer, "collapses", improved.collapses);
@@ -208,9 +228,12 @@ void improve(Mesh& mesh, const SurfaceBounds& bounds, const DerivedParameters& d
   count(timer, "smoothing_moves", improved.smoothing_moves);
   count(timer, "rational_vertices", improved.rational_vertices);
   if (improved.rational_vertices != 0) {
+    // Its collapses make tets that carry nothing.
     const RoundingStats rounded = round_vertices(mesh, bounds, logger);
     count(timer, "rational_vertices_after_rounding", rounded.remaining);
+    return {};
   }
+  return by_region ? std::move(payload.value) : std::vector<double>{};
 }
 
 // The surface on a grid of `spacing` (0: as it is).
@@ -260,6 +283,9 @@ struct EmbeddedSurface {
   double snap_spacing = 0.0;
   /// Per triangle of `surface`, whether it had to be left out.
   std::vector<char> left_out;
+  /// Per tet slot, the filter's winding number carried through
+  /// improvement, or empty (see improve).
+  std::vector<double> carried_winding;
 };
 
 // Snaps and embeds the surface, improves the mesh when asked (checking
@@ -276,15 +302,19 @@ EmbeddedSurface embed_and_improve(const TriangleSoup& simplified, const SurfaceB
                                   const DerivedParameters& derived, const PipelineOptions& options,
                                   PipelineStats& stats, const Logger& logger) {
   double spacing = derived.snap_spacing;
-  EmbeddedSurface out{Mesh(), snapped_surface(simplified, spacing, stats, logger), spacing,
-                      std::vector<char>(simplified.triangles.size(), 0)};
+  EmbeddedSurface out{Mesh(),
+                      snapped_surface(simplified, spacing, stats, logger),
+                      spacing,
+                      std::vector<char>(simplified.triangles.size(), 0),
+                      {}};
   for (int attempt = 1;; ++attempt) {
     Embedding embedding = embed_once(out.surface, out.left_out, bounds, derived, options, stats, logger);
     Mesh& mesh = embedding.mesh;
     if (options.improve) {
       SurfaceBounds improving(*improvement_surface, bounds.open_boundary);
       improving.triangles = &out.surface;
-      improve(mesh, improving, derived, options.tetrahedralize.max_passes, options, stats, logger);
+      out.carried_winding = improve(mesh, improving, out.left_out, derived, options.tetrahedralize.max_passes,
+                                    options, stats, logger);
     }
     const std::size_t remaining = count_rational(mesh);
     if (remaining == 0) {
@@ -376,6 +406,21 @@ TetClassification classify_for_filter(Mesh& mesh, const TriangleSoup& surface, s
   return classes;
 }
 
+// The filter's decision from the winding numbers improvement carried.
+TetClassification carried_classification(const Mesh& mesh, std::span<const double> winding, WindingRule rule,
+                                         StageTimer& timer) {
+  count(timer, "carried_by_region", 1);
+  TetClassification out{std::vector<double>(winding.begin(), winding.end()),
+                        std::vector<char>(mesh.tet_slots(), 0), 0};
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (mesh.tet_alive(t) && is_inside(winding[t], rule)) {
+      out.keep[t] = 1;
+      ++out.kept;
+    }
+  }
+  return out;
+}
+
 // Faces flipped against their neighbours would make the winding number dip
 // inside the solid; orienting patches coherently first keeps the filter sound.
 // A surface written double-sided (each face in both orientations) has
@@ -433,8 +478,11 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
   {
     StageTimer timer(result.stats, "filter", logger);
     if (options.filter) {
-      const TetClassification classes = classify_for_filter(mesh, surface, left_out, derived, *envelope,
-                                                            options.tetrahedralize.winding_rule, timer);
+      const WindingRule rule = options.tetrahedralize.winding_rule;
+      const TetClassification classes =
+          embedded.carried_winding.empty()
+              ? classify_for_filter(mesh, surface, left_out, derived, *envelope, rule, timer)
+              : carried_classification(mesh, embedded.carried_winding, rule, timer);
       keep = classes.keep;
       count(timer, "kept_tets", classes.kept);
     }

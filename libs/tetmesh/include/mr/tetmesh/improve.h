@@ -19,6 +19,7 @@
 #include <mr/tetmesh/mesh.h>
 
 #include <cstddef>
+#include <vector>
 
 namespace mr::tetmesh {
 
@@ -42,6 +43,15 @@ struct ImproveOptions {
   /// epsilon (fTetWild's), splits and collapses traded places for dozens of
   /// passes (thingi10k/61460: 900k splits, max AMIPS stuck at 33).
   double min_sizing = 0.25;
+  /// With SurfaceBounds::triangles, creased vertices where parts meet or
+  /// cross (or copies overlap) may move where their tets are bad too, not
+  /// only those of one sheet. Projected onto one part's triangle, such a
+  /// vertex can turn the other part's faces over for a filter that orients
+  /// tracked faces by geometry afterwards (openscad-nonmanifold-crash left
+  /// the envelope by 19 eps): only for a filter that reads its decision
+  /// from before (TetPayload::value), as the pipeline does when the
+  /// tracked surface is a cycle.
+  bool release_junctions = false;
 };
 
 /// Quality of the live tets, measured on the double (approx) positions.
@@ -65,6 +75,9 @@ struct ImproveStats {
   int passes = 0;
   QualitySummary before;
   QualitySummary after;
+  /// The largest energy at the end over the kWritten tets (all tets when
+  /// no fates were given, TetPayload).
+  double written_max_amips = 0.0;
   std::size_t rational_vertices = 0;  ///< live vertices still rational at the end
 };
 
@@ -89,8 +102,9 @@ struct SurfaceBounds {
   /// surface while its faces stay in the surface envelope.
   const envelope::Envelope* open_boundary;
   /// The triangles the tracked faces' ids name, or null. With them, a
-  /// vertex on a crease of one sheet may move where its tets are bad: it is
-  /// projected back onto the nearest of its own triangles.
+  /// vertex on a crease of one sheet (of any, with
+  /// ImproveOptions::release_junctions) may move where its tets are bad:
+  /// it is projected back onto the nearest of its own triangles.
   const TriangleSoup* triangles = nullptr;
 };
 
@@ -99,6 +113,36 @@ struct SurfaceBounds {
 /// non-positive target edge length or stop energy.
 ImproveStats improve_mesh(Mesh& mesh, const SurfaceBounds& bounds, const ImproveOptions& options,
                           const Logger& logger = {});
+/// What the filter (stage 6) will do with a tet, foreseen for improvement.
+enum TetFate : char {
+  kWritten = 0,        ///< kept: its energy drives the passes and the stop
+  kBesideWritten = 1,  ///< removed, with a corner on a kept tet: its energy
+                       ///< blocks operations that would raise it, no more
+  kDropped = 2,        ///< removed: only its positivity is kept
+};
+
+/// What improvement carries from the tets it replaces to the tets it makes,
+/// one entry per tet slot in each vector (or none: empty).
+/// - `fate`: the passes work on the kWritten tets, and the stop energy is
+///   measured there. Every tet stays strictly positive and the tracked
+///   surface in the envelope whatever its fate.
+/// - `value`: any number per tet (the pipeline carries the filter's winding
+///   number: no operation moves a tet across a tracked face, so the number
+///   of its region stays its own).
+/// A new tet takes the entries of the tet it was made from (a split's half,
+/// a collapse's moved tet); a swap's new tets, all in one region since
+/// swaps never cross a tracked face, take the value of the first old tet
+/// and the mildest fate. On return both have one entry per slot of the
+/// improved mesh (those of removed slots mean nothing).
+struct TetPayload {
+  std::vector<char> fate;
+  std::vector<double> value;
+};
+
+/// The same, carrying `payload` along. Throws mr::UsageError when a
+/// non-empty vector of it has the wrong size.
+ImproveStats improve_mesh(Mesh& mesh, const SurfaceBounds& bounds, const ImproveOptions& options,
+                          TetPayload& payload, const Logger& logger = {});
 
 /// Rounds every rational vertex to doubles where no incident tet inverts; a
 /// vertex that cannot be rounded in place is moved to a nearby double
