@@ -33,7 +33,9 @@ def parse_args(argv):
                         "one results row per format (tool meshrepair.FMT). Default glb. Peers write what they "
                         "always write")
     p.add_argument("--peers", help="comma-separated peers, or 'none' (default: tetrahedralize: tetgen,gmsh; "
-                                   "meshrepair: admesh,meshlab; simplify-in-envelope: none)")
+                                   "meshrepair: admesh,meshlab; simplify-in-envelope: none). tetrahedralize "
+                                   "also knows ftetwild (not by default: no Debian package; FloatTetwild_bin "
+                                   "on PATH or --tool-path ftetwild=PATH)")
     p.add_argument("--no-ours", action="store_true", help="run the peers only")
     p.add_argument("--models", action="append", default=[], metavar="GLOB",
                    help="only models whose relative path or key matches (repeatable), e.g. 'thingi10k/*'")

@@ -14,7 +14,7 @@ from . import summary  # noqa: E402
 COLORS = {"tetrahedralize": "#d62728", "meshrepair": "#d62728", "simplify-in-envelope": "#d62728",
           "meshrepair.glb": "#d62728", "meshrepair.stl": "#8b0000", "meshrepair.obj": "#e377c2",
           "meshrepair.drc": "#17becf",
-          "tetgen": "#1f77b4", "gmsh": "#2ca02c", "admesh": "#ff7f0e", "meshlab": "#9467bd"}
+          "tetgen": "#1f77b4", "gmsh": "#2ca02c", "ftetwild": "#9467bd", "admesh": "#ff7f0e", "meshlab": "#9467bd"}
 FALLBACK = ["#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"]
 TIME_FLOOR_S = 1e-3  # log axes cannot show 0 s
 

@@ -281,9 +281,9 @@ def config_section(order, tools_meta):
         lines.append(f"- **{tool}**{' (ours)' if meta.get('ours') else ''}: {meta.get('fair_config')} — {where}"
                      f"{version}")
     lines += ["", "Every tool runs through the same harness: same input model, same limits, one thread "
-              "(ours with `-j 1`, gmsh with `-nt 1`, OMP_NUM_THREADS=1 for all), its own process group, "
-              "CPU time and peak memory from the kernel's rusage of the tool's process. Input conversion for "
-              "peers is done before the clock starts."]
+              "(ours with `-j 1`, gmsh with `-nt 1`, fTetWild with `--max-threads 1`, OMP_NUM_THREADS=1 for "
+              "all), its own process group, CPU time and peak memory from the kernel's rusage of the tool's "
+              "process. Input conversion for peers is done before the clock starts."]
     return "\n".join(lines)
 
 

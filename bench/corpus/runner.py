@@ -47,7 +47,7 @@ def classify(outcome, stderr_path, memory_mb):
 
 def prepare_input(ctx, tool, model, workdir):
     """(path the tool reads, note): the original, or a conversion made by format-convert (untimed)."""
-    if tool.input_ext is None:
+    if tool.input_ext is None or os.path.splitext(model.path)[1].lower() in tool.native_exts:
         return model.path, ""
     target = os.path.join(workdir, "in" + tool.input_ext)
     note = "format-convert not built"

@@ -5,7 +5,9 @@ converted by our format-convert, untimed), the exact command of its fair configu
 where its output lands. meshrepair writes the format a user asks for (--out-format of the runner):
 one tool entry per format, named `meshrepair.glb`, `meshrepair.stl`, ..., each checked on the file
 it wrote. Ours are called with one thread (-j 1) so that -j N of the runner
-means N busy cores; peers get OMP_NUM_THREADS=1 and gmsh also -nt 1.
+means N busy cores; peers get OMP_NUM_THREADS=1, gmsh also -nt 1 and fTetWild --max-threads 1.
+fTetWild is no Debian package: it runs only when asked for (--peers ftetwild) and found on PATH
+(FloatTetwild_bin) or given with --tool-path ftetwild=PATH.
 """
 import glob
 import os
@@ -38,6 +40,7 @@ class Tool:
     build_command: object = field(default=None, repr=False)  # (tool, input, workdir, epsilon) -> argv
     find_output: object = field(default=None, repr=False)  # (workdir) -> path or None
     finish_input: object = field(default=None, repr=False)  # (converted input, workdir) -> path the tool gets
+    native_exts: tuple = ()  # input extensions (lower case) the tool reads itself: given the original file
 
     @property
     def available(self):
@@ -111,6 +114,14 @@ def _tetgen(tool, inp, workdir, eps):
     return [tool.executable, "-pq1.414gQ", inp]
 
 
+def _ftetwild(tool, inp, workdir, eps):
+    # -o inside the work folder: fTetWild names its side files after it (out.msh__sf.obj,
+    # out.msh__tracked_surface.stl, out.msh_.csv), so nothing lands beside the input.
+    # -e is its own default (1e-3) unless the run's epsilon differs.
+    return [tool.executable, "-i", inp, "-o", os.path.join(workdir, "out.msh"), "-e", repr(eps),
+            "--max-threads", "1"]
+
+
 def _gmsh(tool, inp, workdir, eps):
     return [tool.executable, "-3", "-nt", "1", inp, "-o", os.path.join(workdir, "out.msh"), "-format", "msh41"]
 
@@ -160,6 +171,14 @@ def all_tools():
              "Volume(1) = {1};` (default 3D Delaunay, mesh size from the surface; input converted to STL by "
              "format-convert, untimed)", ".stl", "out.msh",
              build_command=_gmsh, find_output=_fixed_output("out.msh"), finish_input=_gmsh_geo),
+        Tool("ftetwild", "tetrahedralize", False, VOLUME,
+             "`FloatTetwild_bin -i IN -o out.msh -e EPS --max-threads 1` (fTetWild, built by the user from the "
+             "public wildmeshing/fTetWild repository, Release; its defaults otherwise: ideal edge length 1/20 of "
+             "the bbox diagonal, stop energy 10, inside filtered by winding number; reads OBJ/OFF/STL/PLY as they "
+             "are, other inputs converted to OBJ by format-convert, untimed; writes binary MSH 2.2, and side files "
+             "`out.msh__sf.obj`, `out.msh__tracked_surface.stl`, `out.msh_.csv` in its work folder)", ".obj", "out.msh",
+             native_exts=(".obj", ".off", ".stl", ".ply"),
+             build_command=_ftetwild, find_output=_fixed_output("out.msh")),
         Tool("admesh", "meshrepair", False, SURFACE,
              "`admesh --write-binary-stl=out.stl in.stl` (all of admesh's default repairs: exact and "
              "nearby merge, remove unconnected facets, fill holes, fix normals; input converted to STL)", ".stl", "out.stl",
@@ -173,7 +192,11 @@ def all_tools():
 
 
 DEFAULT_PEERS = {"tetrahedralize": ["tetgen", "gmsh"], "meshrepair": ["admesh", "meshlab"], "simplify-in-envelope": []}
-PEER_BINARIES = {"tetgen": ["tetgen"], "gmsh": ["gmsh"], "admesh": ["admesh"], "meshlab": ["meshlabserver"]}
+PEER_BINARIES = {"tetgen": ["tetgen"], "gmsh": ["gmsh"], "admesh": ["admesh"], "meshlab": ["meshlabserver"],
+                 "ftetwild": ["FloatTetwild_bin"]}
+# Peers that no Debian package provides: how a user gets one (shown when it is not found).
+BUILD_HINTS = {"ftetwild": "build it from the public wildmeshing/fTetWild repository and pass "
+                           "--tool-path ftetwild=PATH/FloatTetwild_bin"}
 
 
 def locate(tool, build_dir, overrides):
@@ -193,6 +216,10 @@ def locate(tool, build_dir, overrides):
         tool.unavailable = "not installed (no meshlabserver or headless MeshLab on this machine)"
     else:
         tool.unavailable = f"not installed (no `{' or '.join(PEER_BINARIES[tool.name])}` on PATH)"
+        if tool.name in overrides:
+            tool.unavailable = f"no executable at {path}"
+        if tool.name in BUILD_HINTS:
+            tool.unavailable += f"; {BUILD_HINTS[tool.name]}"
     return tool
 
 
