@@ -28,6 +28,17 @@ CUBE_V = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
 CUBE_F = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1),
           (2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
 
+# The unit cube in five positive tets, as the fake tools write it.
+UNIT_CUBE_TETS = r'''
+pts = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+tets = [(0, 1, 2, 4), (1, 2, 3, 7), (1, 4, 5, 7), (2, 4, 6, 7), (1, 2, 4, 7)]
+def orient(t):
+    a, b, c, d = (pts[i] for i in t)
+    u, v, w = ([q[k] - a[k] for k in range(3)] for q in (b, c, d))
+    det = u[0]*(v[1]*w[2]-v[2]*w[1]) - u[1]*(v[0]*w[2]-v[2]*w[0]) + u[2]*(v[0]*w[1]-v[1]*w[0])
+    return t if det > 0 else (t[1], t[0], t[2], t[3])
+'''
+
 FAKE_TOOL = r'''
 import os, sys, time, json
 inp, out = sys.argv[1], sys.argv[2]
@@ -36,14 +47,7 @@ if name.startswith("tet"):
     os.abort()
 if name.startswith("open"):
     time.sleep(60)
-pts = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
-tets = [(0, 1, 2, 4), (1, 2, 3, 7), (1, 4, 5, 7), (2, 4, 6, 7), (1, 2, 4, 7)]
-def orient(t):
-    a, b, c, d = (pts[i] for i in t)
-    u, v, w = ([q[k] - a[k] for k in range(3)] for q in (b, c, d))
-    det = u[0]*(v[1]*w[2]-v[2]*w[1]) - u[1]*(v[0]*w[2]-v[2]*w[0]) + u[2]*(v[0]*w[1]-v[1]*w[0])
-    return t if det > 0 else (t[1], t[0], t[2], t[3])
-with open(out, "w") as f:
+''' + UNIT_CUBE_TETS + r'''with open(out, "w") as f:
     f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n" % len(pts))
     for i, p in enumerate(pts):
         f.write("%d %g %g %g\n" % ((i + 1,) + p))

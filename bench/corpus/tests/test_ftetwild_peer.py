@@ -23,7 +23,7 @@ sys.path.insert(0, BENCH)
 
 from corpus import runner, tools  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from test_fake_tool import FAKE_TOOL, read_rows, write_corpus  # noqa: E402
+from test_fake_tool import FAKE_TOOL, UNIT_CUBE_TETS, read_rows, write_corpus  # noqa: E402
 
 RUNNER = os.path.join(BENCH, "run_corpus.py")
 BUILD = os.environ.get("MR_BUILD_DIR", os.path.join(os.path.dirname(BENCH), "build"))
@@ -40,14 +40,7 @@ inp, out = value("-i"), value("-o")
 if os.path.basename(inp).startswith("tet"):
     print("[error] Unable to load mesh at " + inp)
     sys.exit(1)
-pts = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
-tets = [(0, 1, 2, 4), (1, 2, 3, 7), (1, 4, 5, 7), (2, 4, 6, 7), (1, 2, 4, 7)]
-def orient(t):
-    a, b, c, d = (pts[i] for i in t)
-    u, v, w = ([q[k] - a[k] for k in range(3)] for q in (b, c, d))
-    det = u[0]*(v[1]*w[2]-v[2]*w[1]) - u[1]*(v[0]*w[2]-v[2]*w[0]) + u[2]*(v[0]*w[1]-v[1]*w[0])
-    return t if det > 0 else (t[1], t[0], t[2], t[3])
-with open(out, "wb") as f:
+''' + UNIT_CUBE_TETS + r'''with open(out, "wb") as f:
     f.write(b"$MeshFormat\n2.2 1 8\n" + struct.pack("<i", 1) + b"$EndMeshFormat\n")
     f.write(b"$Nodes\n%d\n" % len(pts))
     for i, p in enumerate(pts):
