@@ -13,6 +13,7 @@
 
 #include <extract_boundary.h>
 #include <format_convert.h>
+#include <hole_fill_tool.h>
 #include <meshrepair.h>
 
 #include <catch2/catch.hpp>
@@ -83,6 +84,19 @@ TEST_CASE("quantized grid: values as Draco dequantizes them, covering the box wi
       REQUIRE(grid.step(0, value, 1) == double(float(float(level + 1) * delta) + q.origin[0]));
   }
   REQUIRE(grid.nearest(0, 1e9) == double(float(float(1023) * delta) + q.origin[0]));  // clamped to the range
+}
+
+TEST_CASE("grid spacing over a box: float steps grow with the coordinates", "[grid]") {
+  const Vec3d far(1e9, 1e9, 1e9);
+  // Floats between 2^29 and 2^30 (1e9 lies there) are 2^(29 - 23) = 64 apart.
+  CHECK(CoordinateGrid::float32().spacing_over(far, far + Vec3d::Ones()) == 64.0);
+  CHECK(CoordinateGrid::float32().spacing_over(Vec3d::Zero(), Vec3d::Ones()) == std::ldexp(1.0, -23));
+  CHECK(CoordinateGrid::doubles().spacing_over(Vec3d::Zero(), Vec3d::Ones()) == std::ldexp(1.0, -52));
+  // However many levels Draco has, its decoder adds them to the origin in float.
+  const CoordinateGrid draco = CoordinateGrid::quantized_over(far, far + Vec3d::Ones(), 30);
+  CHECK(draco.spacing_over(far, far + Vec3d::Ones()) >= 64.0);
+  const CoordinateGrid near = CoordinateGrid::quantized_over(Vec3d::Zero(), Vec3d::Ones(), 16);
+  CHECK(near.spacing_over(Vec3d::Zero(), Vec3d::Ones()) < 1e-4);
 }
 
 TEST_CASE("rounding to float32 keeps two nearly touching cubes apart", "[grid][repair]") {
@@ -236,6 +250,43 @@ TEST_CASE("meshrepair's STL, GLB and Draco outputs stay watertight where float32
       REQUIRE(j["written_file"]["watertight"] == true);
       REQUIRE(j["repair"]["rounded_vertices"].get<int>() > 0);
     }
+  }
+}
+
+TEST_CASE("meshrepair refuses at once a format that cannot store the model within epsilon", "[grid][e2e]") {
+  // A unit cube 1e9 from the origin: floats there are 64 apart, epsilon is
+  // 0.0017. Rounding onto them merged every vertex, and the search for
+  // places keeping the surface apart ran for minutes.
+  const io::Registry registry = io::make_default_registry();
+  test::TempDir dir("meshrepair_far");
+  TriangleSoup cube = test::cube_soup(0.0, 1.0);
+  for (Vec3d& p : cube.positions) p += Vec3d(1e9, -2e9, 5e8);
+  cube.triangles.pop_back();  // a hole, so that there is something to repair
+  const auto input = dir / "far.obj";
+  io::write_surface(registry, cube, input);
+  for (const char* name : {"out.glb", "out.stl", "out.drc"}) {
+    SECTION(name) {
+      const auto output = dir / name;
+      const test::ToolRun run = test::run_tool(tools::meshrepair, {input.string(), output.string(), "-q"});
+      CHECK(run.exit_code == 2);
+      CHECK_THAT(run.err, Catch::Contains(output.string()) && Catch::Contains("apart where the model lies") &&
+                              Catch::Contains("move the model nearer to the origin"));
+      CHECK_FALSE(std::filesystem::exists(output));
+    }
+  }
+  SECTION("hole-fill too") {
+    const auto output = dir / "filled.glb";
+    const test::ToolRun run = test::run_tool(tools::hole_fill, {input.string(), output.string(), "-q"});
+    CHECK(run.exit_code == 2);
+    CHECK_THAT(run.err, Catch::Contains("apart where the model lies"));
+    CHECK_FALSE(std::filesystem::exists(output));
+  }
+  SECTION("doubles hold it") {
+    const auto output = dir / "out.obj";
+    const test::ToolRun run = test::run_tool(tools::meshrepair, {input.string(), output.string(), "-q"});
+    CAPTURE(run.err);
+    REQUIRE(run.exit_code == 0);
+    CHECK(check::check_surface(io::read_surface(registry, output)).watertight());
   }
 }
 

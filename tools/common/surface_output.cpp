@@ -1,11 +1,14 @@
 #include "surface_output.h"
 
 #include <mr/check/surface_check.h>
+#include <mr/core/errors.h>
 #include <mr/core/weld.h>
 #include <mr/io/mesh_io.h>
 
 #include <algorithm>
 #include <cstdint>
+#include <iomanip>
+#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -27,6 +30,24 @@ std::optional<CoordinateGrid> finer_draco_grid(const io::Registry& registry, con
   const CoordinateGrid grid = io::surface_position_grid(registry, path, options, lo, hi);
   options.draco.position_grid = grid.quantization();
   return grid;
+}
+
+void require_grid_holds(const CoordinateGrid& grid, const std::string& path, const Eigen::AlignedBox3d& box,
+                        double epsilon) {
+  const double spacing = grid.spacing_over(box.min(), box.max());
+  if (spacing <= epsilon) return;
+  const double farthest = std::max(box.min().cwiseAbs().maxCoeff(), box.max().cwiseAbs().maxCoeff());
+  const bool far = farthest > 1e3 * box.diagonal().norm();
+  std::ostringstream why;
+  why << std::setprecision(3) << path << ": " << grid.name() << " positions are " << spacing
+      << " apart where the model lies (coordinates up to " << farthest << "), more than epsilon (" << epsilon
+      << "), so the surface cannot be written within epsilon of the input; write .obj, .off or .ply "
+         "(doubles)";
+  if (far)
+    why << ", or move the model nearer to the origin";
+  else if (grid.kind() == CoordinateGrid::Kind::quantized)
+    why << ", or scale the model up (Draco's grid spans at least 1e-6)";
+  throw UsageError(why.str());
 }
 
 SurfaceWrite write_watertight_surface(const io::Registry& registry, TriangleSoup surface,

@@ -23,6 +23,13 @@ std::optional<CoordinateGrid> finer_draco_grid(const io::Registry& registry, con
                                                io::WriteOptions& options, const Vec3d& lo, const Vec3d& hi,
                                                const CoordinateGrid& refused);
 
+/// Throws mr::UsageError naming `path` when `grid` stores positions more
+/// than `epsilon` apart somewhere in `box`: the file cannot hold a surface
+/// there within epsilon (float32 a billion units from the origin, where
+/// floats are 64 apart), and rounding onto it would merge the vertices.
+void require_grid_holds(const CoordinateGrid& grid, const std::string& path, const Eigen::AlignedBox3d& box,
+                        double epsilon);
+
 struct SurfaceWrite {
   bool watertight = false;  ///< watertight in doubles, hence rounded and checked as written
   repair::GridRoundingStats rounding;

@@ -89,8 +89,10 @@ FillRun run(ToolOptions o, const std::vector<std::string>& files) {
   start = std::chrono::steady_clock::now();
   const Eigen::AlignedBox3d box = bounding_box(input);
   // Draco: a grid step of at most 1/64 of meshrepair's default epsilon (1e-3 of the diagonal).
-  o.write.draco.position_bits = draco_position_bits_for(box.sizes().maxCoeff(), 1e-3 * box.diagonal().norm());
+  const double epsilon = 1e-3 * box.diagonal().norm();
+  o.write.draco.position_bits = draco_position_bits_for(box.sizes().maxCoeff(), epsilon);
   o.fill.grid = io::surface_position_grid(registry, files[1], o.write, box.min(), box.max());
+  require_grid_holds(o.fill.grid, files[1], box, epsilon);
   r.result = hole_fill::fill_holes(input, o.fill);
   r.seconds_fill = seconds_since(start);
   start = std::chrono::steady_clock::now();

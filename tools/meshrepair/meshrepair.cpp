@@ -201,6 +201,17 @@ void check_provenance_request(const ToolOptions& options, const io::Registry& re
         ", which has no per-vertex attribute to hold it; write .glb or .gltf (or use --provenance)");
 }
 
+// Refuses, before any work, an output format that cannot store the model
+// within epsilon where it lies (require_grid_holds).
+void check_output_precision(const io::Registry& registry, const std::string& out, const TriangleSoup& input,
+                            const ToolOptions& options) {
+  const Eigen::AlignedBox3d box = bounding_box(input);
+  const double epsilon = epsilon_for(input, options.tetrahedralize);
+  io::WriteOptions write = options.write;
+  require_grid_holds(output_grid(registry, out, epsilon, options, write)(box.min(), box.max()), out, box,
+                     epsilon);
+}
+
 // The holes-only path: its holes filled, the input written back with the
 // patches, checked as written. False (nothing written) when it declines.
 bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
@@ -321,6 +332,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   RebuildInput rebuild{input, seconds_since(start), {}};
   check_faces_fit(files[0], input.num_triangles(), kPipelineBytesPerFace, options.max_memory);
   check_has_area(files[0], input);
+  check_output_precision(registry, files[1], input, options);
   if (try_holes_only(options, registry, files, input, rebuild.seconds_read, rebuild.declined, out)) return;
   if (options.verbose && !options.quiet)
     err << "meshrepair: rebuilding the surface (" << rebuild.declined << ")\n";

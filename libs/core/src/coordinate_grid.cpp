@@ -172,4 +172,18 @@ double CoordinateGrid::step(int axis, double g, int steps) const {
   return g;
 }
 
+double CoordinateGrid::spacing_over(const Vec3d& lo, const Vec3d& hi) const {
+  double spacing = 0.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const double x : {lo[axis], hi[axis]}) {
+      const double g = nearest(axis, x);
+      spacing = std::max({spacing, step(axis, g, 1) - g, g - step(axis, g, -1)});
+      // Draco's decoder adds in float: far from the origin, levels finer
+      // than a float step there land on the same float.
+      if (kind_ == Kind::quantized) spacing = std::max(spacing, float_steps(g, 1) - g);
+    }
+  }
+  return spacing;
+}
+
 }  // namespace mr

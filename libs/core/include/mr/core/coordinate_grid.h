@@ -58,6 +58,10 @@ class CoordinateGrid {
   double step(int axis, double g, int steps) const;
   /// True if p is on the grid.
   bool holds(const Vec3d& p) const { return nearest(p) == p; }
+  /// The largest distance between neighbouring grid values on any axis
+  /// within the box [lo, hi] (found at its corners, where coordinates are
+  /// largest): how far rounding may move a vertex there, doubled.
+  double spacing_over(const Vec3d& lo, const Vec3d& hi) const;
 
  private:
   CoordinateGrid(Kind kind, const Quantization& quantization);
