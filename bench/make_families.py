@@ -9,6 +9,10 @@ Every model of a corpus whose MANIFEST.tsv says closed == 1 becomes up to four f
   the bbox diagonal); OBJ with %.17g coordinates (exact);
 - overlap: the welded model and a copy translated by a third of the bbox diagonal vector, so that
   the two overlap and intersect; OBJ with %.17g coordinates.
+- graze (only when asked for): the welded model and a nearly coincident copy, turned by 0.002 rad
+  about a random axis through the bbox centre and moved by 0.5 eps in a random direction, so that
+  the two surfaces cross each other at grazing angles everywhere (assemblies with coincident faces,
+  a model exported twice); OBJ with %.17g coordinates.
 Files land under OUT with the corpus's relative layout and the family before the extension
 (OUT/thingi10k/100036.soup.stl), with OUT/MANIFEST.tsv listing them. Inputs are read through our
 format-convert (any corpus format -> OBJ). The same --seed gives the same bytes.
@@ -43,12 +47,15 @@ except ImportError:
 BENCH_DIR = os.path.dirname(os.path.abspath(__file__))
 REPO_DIR = os.path.dirname(BENCH_DIR)
 DEFAULT_CORPUS = os.path.normpath(os.path.join(REPO_DIR, "..", "shared", "corpus"))
-FAMILIES = ("soup", "soup_dup_flip", "jitter", "overlap")
-EXTENSION = {"soup": ".stl", "soup_dup_flip": ".stl", "jitter": ".obj", "overlap": ".obj"}
+FAMILIES = ("soup", "soup_dup_flip", "jitter", "overlap", "graze")
+DEFAULT_FAMILIES = FAMILIES[:4]
+EXTENSION = {"soup": ".stl", "soup_dup_flip": ".stl", "jitter": ".obj", "overlap": ".obj", "graze": ".obj"}
 TAGS = {"soup": "soup,unwelded", "soup_dup_flip": "soup_dup_flip,unwelded,duplicate-faces,flipped-faces",
-        "jitter": "jitter,perturbed", "overlap": "overlap,self-intersecting,multi-component"}
+        "jitter": "jitter,perturbed", "overlap": "overlap,self-intersecting,multi-component",
+        "graze": "graze,self-intersecting,multi-component,near-coincident"}
 DUPLICATED, FLIPPED = 0.10, 0.05  # fractions of the triangles in soup_dup_flip
 JITTER = 0.5  # of epsilon
+GRAZE_ANGLE, GRAZE_SHIFT = 0.002, 0.5  # radians; of epsilon
 EPSILON = 1e-3  # of the bbox diagonal
 MANIFEST_COLUMNS = ("file", "format", "bytes", "source", "license", "attribution", "family", "original",
                     "vertices", "faces", "boundary_edges", "closed", "tags")
@@ -157,7 +164,31 @@ def overlap(vertices, triangles, rng=None):
             np.concatenate([triangles, triangles + len(vertices)]))
 
 
-MAKERS = {"soup": soup, "soup_dup_flip": soup_dup_flip, "jitter": jitter, "overlap": overlap}
+def random_unit_vector(rng):
+    while True:
+        v = rng.standard_normal(3)
+        if np.linalg.norm(v) > 1e-6:
+            return v / np.linalg.norm(v)
+
+
+def rotation(axis, angle):
+    """The 3x3 matrix turning by `angle` about the unit vector `axis` (Rodrigues)."""
+    k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
+    return np.eye(3) + np.sin(angle) * k + (1.0 - np.cos(angle)) * (k @ k)
+
+
+def graze(vertices, triangles, rng):
+    """The model and a copy turned by GRAZE_ANGLE about a random axis through the bbox centre, then moved
+    by GRAZE_SHIFT * EPSILON * the bbox diagonal in a random direction."""
+    centre = 0.5 * (vertices.max(axis=0) + vertices.min(axis=0))
+    turn = rotation(random_unit_vector(rng), GRAZE_ANGLE)
+    shift = GRAZE_SHIFT * EPSILON * bbox_diagonal(vertices) * random_unit_vector(rng)
+    copy = (vertices - centre) @ turn.T + centre + shift
+    return (np.concatenate([vertices, copy]),
+            np.concatenate([triangles, triangles + len(vertices)]))
+
+
+MAKERS = {"soup": soup, "soup_dup_flip": soup_dup_flip, "jitter": jitter, "overlap": overlap, "graze": graze}
 
 
 # ---------------------------------------------------------------- writing
@@ -294,7 +325,8 @@ def parse_args(argv):
     p.add_argument("--out", required=True, help="output folder (gets the files and MANIFEST.tsv)")
     p.add_argument("--corpus", default=DEFAULT_CORPUS, help="corpus folder with MANIFEST.tsv (default: %(default)s)")
     p.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
-    p.add_argument("--families", default=",".join(FAMILIES), help=f"comma list of {', '.join(FAMILIES)} (default all)")
+    p.add_argument("--families", default=",".join(DEFAULT_FAMILIES),
+                   help=f"comma list of {', '.join(FAMILIES)} (default: all but graze)")
     p.add_argument("--models", action="append", default=[], metavar="GLOB",
                    help="only models whose relative path or key matches (repeatable)")
     p.add_argument("--max-faces", type=int, help="only models with at most this many faces (MANIFEST's faces)")

@@ -142,6 +142,23 @@ class Families(unittest.TestCase):
         np.testing.assert_allclose(vertices[8:] - vertices[:8], np.tile([1 / 3, 1 / 3, 2 / 3], (8, 1)), rtol=1e-12)
         self.assertEqual(triangles[12:].tolist(), (self.triangles + 8).tolist())
 
+    def test_graze_adds_a_nearly_coincident_turned_copy(self):
+        vertices, triangles = mf.graze(self.vertices, self.triangles, self.rng())
+        original, copy = vertices[:8], vertices[8:]
+        self.assertEqual(triangles[12:].tolist(), (self.triangles + 8).tolist())
+        # A rigid motion: every distance between corners kept.
+        pairwise = lambda v: np.linalg.norm(v[:, None, :] - v[None, :, :], axis=2)  # noqa: E731
+        np.testing.assert_allclose(pairwise(copy), pairwise(original), atol=1e-12)
+        # Each corner moved by at most the turn at its distance from the centre plus the shift, and the
+        # centre by the shift alone (half an epsilon of the 1 x 1 x 2 box's diagonal).
+        shift = 0.5 * 1e-3 * np.sqrt(6.0)
+        centre = np.array([0.5, 0.5, 1.0])
+        radius = np.linalg.norm(original - centre, axis=1)
+        moved = np.linalg.norm(copy - original, axis=1)
+        self.assertTrue(np.all(moved <= mf.GRAZE_ANGLE * radius + shift + 1e-12))
+        self.assertTrue(np.all(moved > 0))
+        self.assertAlmostEqual(float(np.linalg.norm(copy.mean(axis=0) - centre)), shift, places=12)
+
     def test_binary_stl_round_trips_the_float32_corners(self):
         corners = mf.soup(self.vertices, self.triangles, self.rng())
         with tempfile.TemporaryDirectory() as tmp:
@@ -179,7 +196,7 @@ class Generate(unittest.TestCase):
     def tearDown(self):
         shutil.rmtree(self.tmp, ignore_errors=True)
 
-    def generate(self, name, seed=1, families=mf.FAMILIES if mf else ()):
+    def generate(self, name, seed=1, families=mf.DEFAULT_FAMILIES if mf else ()):
         out = os.path.join(self.tmp, name)
         mf.generate(self.corpus, out, families, seed, self.convert, log=lambda *a: None)
         return out
@@ -197,6 +214,14 @@ class Generate(unittest.TestCase):
         out = self.generate("a")
         self.assertEqual(sorted(self.contents(out)), ["MANIFEST.tsv", "cube.jitter.obj", "cube.overlap.obj",
                                                       "cube.soup.stl", "cube.soup_dup_flip.stl"])
+
+    def test_graze_only_when_asked_for(self):
+        out = self.generate("g", families=("graze",))
+        self.assertEqual(sorted(self.contents(out)), ["MANIFEST.tsv", "cube.graze.obj"])
+        with open(os.path.join(out, "MANIFEST.tsv"), newline="") as f:
+            rows = {r["file"]: r for r in csv.DictReader(f, delimiter="\t")}
+        self.assertEqual(rows["cube.graze.obj"]["faces"], "24")
+        self.assertIn("near-coincident", rows["cube.graze.obj"]["tags"])
 
     def test_same_seed_same_bytes_other_seed_other_bytes(self):
         first, again, other = self.generate("a"), self.generate("b"), self.generate("c", seed=2)
