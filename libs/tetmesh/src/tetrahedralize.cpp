@@ -2,6 +2,7 @@
 
 #include "defect_faces.h"
 #include "filter_preview.h"
+#include "filter_stage.h"
 #include "part_labels.h"
 #include "regions.h"
 #include "rounding_stage.h"
@@ -194,16 +195,20 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
 }
 
 // Improvement, on the tets that will be written when the filter runs
-// (TetFate, improve.h). Returns the filter's winding number per tet slot
-// when it was decided by region before improvement and carried through it
-// (empty otherwise): the tracked surface's orientation is guessed from
-// geometry, and faces that improvement moved and flattened made a closed
-// input's tracked surface open (trimesh/counter.unitsmm: 3 to 6 edges), so
-// the filter fell back to per-tet numbers and its boundary left the
-// envelope where the surface had opened.
-std::vector<double> improve(Mesh& mesh, const SurfaceBounds& bounds, std::span<const char> left_out,
-                            const DerivedParameters& derived, int max_passes, const PipelineOptions& options,
-                            PipelineStats& stats, const Logger& logger) {
+// (TetFate, improve.h). Returns what it carried for the filter: the winding
+// number per tet slot when the filter was decided by region before
+// improvement (the tracked surface's orientation is guessed from geometry,
+// and faces that improvement moved and flattened made a closed input's
+// tracked surface open: trimesh/counter.unitsmm, 3 to 6 edges, so the
+// filter fell back to per-tet numbers and its boundary left the envelope
+// where the surface had opened), and the fates it worked with.
+// Vertices where parts meet or cross may move where moving them cannot
+// mislead the filter: when it reads the carried numbers, or on an open
+// input, where it decides per tet and keeps only tets improved as written
+// (filter_stage.h).
+detail::CarriedDecision improve(Mesh& mesh, const SurfaceBounds& bounds, std::span<const char> left_out,
+                                const DerivedParameters& derived, int max_passes,
+                                const PipelineOptions& options, PipelineStats& stats, const Logger& logger) {
   StageTimer timer(stats, "improve", logger);
   ImproveOptions improve_options;
   improve_options.target_edge_length = derived.edge_length;
@@ -217,7 +222,13 @@ std::vector<double> improve(Mesh& mesh, const SurfaceBounds& bounds, std::span<c
     by_region = preview.by_region;
     if (!options.keep_rejected) payload.fate = detail::fates_from_winding(mesh, preview.winding);
     if (by_region) payload.value = std::move(preview.winding);
-    improve_options.release_junctions = by_region;
+    // An input with open edges: its filter decides per tet. (A closed input
+    // whose tracked surface is no cycle is decided around its left-out
+    // triangles, or per tet within the envelope: openscad-nonmanifold-crash,
+    // closed but not manifold, left it by 1.4 eps with released junctions.)
+    const bool open_input = bounds.open_boundary != nullptr;
+    improve_options.release_junctions = by_region || (open_input && !payload.fate.empty());
+    count(timer, "junctions_released", improve_options.release_junctions ? 1 : 0);
     count(timer, "dropped_tets", std::size_t(std::count(payload.fate.begin(), payload.fate.end(), kDropped)));
   }
   const ImproveStats improved = improve_mesh(mesh, bounds, improve_options, payload, logger);
@@ -233,7 +244,7 @@ std::vector<double> improve(Mesh& mesh, const SurfaceBounds& bounds, std::span<c
     count(timer, "rational_vertices_after_rounding", rounded.remaining);
     return {};
   }
-  return by_region ? std::move(payload.value) : std::vector<double>{};
+  return {std::move(payload.value), std::move(payload.fate)};
 }
 
 // The surface on a grid of `spacing` (0: as it is).
@@ -283,9 +294,8 @@ struct EmbeddedSurface {
   double snap_spacing = 0.0;
   /// Per triangle of `surface`, whether it had to be left out.
   std::vector<char> left_out;
-  /// Per tet slot, the filter's winding number carried through
-  /// improvement, or empty (see improve).
-  std::vector<double> carried_winding;
+  /// What improvement carried to the filter (see improve); empty without it.
+  detail::CarriedDecision carried;
 };
 
 // Snaps and embeds the surface, improves the mesh when asked (checking
@@ -313,8 +323,8 @@ EmbeddedSurface embed_and_improve(const TriangleSoup& simplified, const SurfaceB
     if (options.improve) {
       SurfaceBounds improving(*improvement_surface, bounds.open_boundary);
       improving.triangles = &out.surface;
-      out.carried_winding = improve(mesh, improving, out.left_out, derived, options.tetrahedralize.max_passes,
-                                    options, stats, logger);
+      out.carried = improve(mesh, improving, out.left_out, derived, options.tetrahedralize.max_passes,
+                            options, stats, logger);
     }
     const std::size_t remaining = count_rational(mesh);
     if (remaining == 0) {
@@ -341,84 +351,6 @@ EmbeddedSurface embed_and_improve(const TriangleSoup& simplified, const SurfaceB
                  stuck + "without the " + std::to_string(newly_left_out) + " triangles that made them");
     }
   }
-}
-
-// The filter's decision per tet (stage 6). The winding number of the
-// tracked surface as it is now (after rounding and improvement moved it
-// within the envelope), not of the raw input: its jumps then lie exactly on
-// tracked faces, so the kept tets end there. Filtering with the input kept
-// big tets whose centroid fell between the two surfaces, and their far
-// faces left the envelope.
-// A closed tracked surface (as most inputs give) needs one query per
-// region. So does a closed input whose tracked surface is open only where
-// triangles were left out, asked of the input itself, with the tets around
-// those triangles deciding each for itself. Otherwise the winding number
-// varies inside a region, so every tet is queried, most of them of the
-// input triangles the surface embeds (winding_filter.h).
-TetClassification classify_for_filter(Mesh& mesh, const TriangleSoup& surface, std::span<const char> left_out,
-                                      const DerivedParameters& derived, const envelope::Envelope& envelope,
-                                      WindingRule rule, StageTimer& timer) {
-  const TriangleSoup tracked = detail::tracked_surface(mesh, {}, surface, detail::Multiplicity::as_chain);
-  const std::vector<std::array<Index, 2>> open_edges = detail::unbalanced_edges(tracked);
-  count(timer, "closed_surface", open_edges.empty() ? 1 : 0);
-  if (open_edges.empty()) {
-    count(timer, "closed_input", 0);
-    return classify_regions(mesh, WindingNumberTree(tracked), rule);
-  }
-
-  TriangleSoup holes;
-  holes.positions = surface.positions;
-  for (std::size_t i = 0; i < surface.triangles.size(); ++i) {
-    if (left_out[i] != 0) holes.triangles.push_back(surface.triangles[i]);
-  }
-  const std::vector<double> offsets = tracked_surface_offsets(mesh, surface);
-  // How far from a left-out triangle an edge at the rim of its hole can be:
-  // the neighbours' tracked faces end on its edges, moved off them by no
-  // more than the largest offset.
-  const double hole_reach =
-      kOffsetMargin * (offsets.empty() ? 0.0 : *std::max_element(offsets.begin(), offsets.end())) +
-      1e-9 * derived.epsilon;
-  // The tracked surface must be open only at the holes, or regions would
-  // leak into each other (thingi10k/1514499 loses tracked faces somewhere
-  // with none left out: one region took in 282k tets whose own winding
-  // number said inside).
-  const bool input_is_cycle = detail::is_cycle(weld_identical_vertices(surface));
-  const std::size_t away = detail::edges_away_from(tracked, open_edges, holes, hole_reach);
-  const bool closed_input = input_is_cycle && away == 0;
-  count(timer, "closed_input", closed_input ? 1 : 0);
-  count(timer, "input_is_cycle", input_is_cycle ? 1 : 0);
-  count(timer, "open_edges", open_edges.size());
-  count(timer, "open_edges_away_from_holes", away);
-  if (closed_input) {
-    BarrierRefinementStats refined;
-    TetClassification classes =
-        classify_with_refined_barrier(mesh, holes, WindingNumberTree(surface), rule, envelope, {}, refined);
-    count(timer, "barrier_tets", refined.barrier_tets);
-    count(timer, "barrier_rounds", static_cast<std::size_t>(refined.rounds));
-    count(timer, "barrier_splits", refined.splits);
-    count(timer, "barrier_faces_outside", refined.faces_outside);
-    return classes;
-  }
-  std::size_t near_queries = 0;
-  TetClassification classes = classify_tets_near_input(mesh, WindingNumberTree(tracked), surface, left_out,
-                                                       offsets, rule, &near_queries);
-  count(timer, "near_surface_queries", near_queries);
-  return classes;
-}
-
-// The filter's decision from the winding numbers improvement carried.
-TetClassification carried_classification(const Mesh& mesh, std::span<const double> winding, WindingRule rule,
-                                         StageTimer& timer) {
-  count(timer, "carried_by_region", 1);
-  TetClassification out{std::vector<double>(winding.begin(), winding.end()),
-                        std::vector<char>(mesh.tet_slots(), 0), 0};
-  for (Index t = 0; t < mesh.tet_slots(); ++t) {
-    if (mesh.tet_alive(t) && is_inside(winding[t], rule)) {
-      out.keep[t] = 1;
-      ++out.kept;
-    }
-  }
-  return out;
 }
 
 // Faces flipped against their neighbours would make the winding number dip
@@ -479,10 +411,8 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
     StageTimer timer(result.stats, "filter", logger);
     if (options.filter) {
       const WindingRule rule = options.tetrahedralize.winding_rule;
-      const TetClassification classes =
-          embedded.carried_winding.empty()
-              ? classify_for_filter(mesh, surface, left_out, derived, *envelope, rule, timer)
-              : carried_classification(mesh, embedded.carried_winding, rule, timer);
+      const TetClassification classes = detail::filter_tets(mesh, surface, left_out, embedded.carried,
+                                                            derived.epsilon, *envelope, rule, timer);
       keep = classes.keep;
       count(timer, "kept_tets", classes.kept);
     }

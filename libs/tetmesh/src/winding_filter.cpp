@@ -76,6 +76,11 @@ TetClassification classify_tets(const Mesh& mesh, const WindingNumberTree& tree,
   return classification(mesh, slots, rule, [&](std::size_t i) { return values[i]; });
 }
 
+TetClassification classify_by_winding(const Mesh& mesh, std::span<const double> winding, WindingRule rule) {
+  const std::vector<Index> slots = live_tets(mesh);
+  return classification(mesh, slots, rule, [&](std::size_t i) { return winding[slots[i]]; });
+}
+
 std::vector<double> tracked_surface_offsets(const Mesh& mesh, const TriangleSoup& input) {
   std::vector<double> offsets(input.triangles.size(), 0.0);
   for (Index t = 0; t < mesh.tet_slots(); ++t) {

@@ -50,7 +50,8 @@ struct ImproveOptions {
   /// tracked faces by geometry afterwards (openscad-nonmanifold-crash left
   /// the envelope by 19 eps): only for a filter that reads its decision
   /// from before (TetPayload::value), as the pipeline does when the
-  /// tracked surface is a cycle.
+  /// tracked surface is a cycle, or that decides per tet and keeps only
+  /// tets improved as kWritten, as it does on an open input.
   bool release_junctions = false;
 };
 

@@ -5,6 +5,7 @@
 #include <mr/tetmesh/logger.h>
 
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -42,6 +43,10 @@ class StageTimer {
   StageTimer(const StageTimer&) = delete;
   StageTimer& operator=(const StageTimer&) = delete;
   StageStats& stage() { return stats_.stage(name_); }
+  /// stage().count(key, value), for the sizes stages count.
+  void count(std::string key, std::size_t value) {
+    stage().count(std::move(key), static_cast<std::int64_t>(value));
+  }
 
  private:
   PipelineStats& stats_;

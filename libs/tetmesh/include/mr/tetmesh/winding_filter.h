@@ -36,6 +36,10 @@ bool is_inside(double winding, WindingRule rule);
 /// result for any thread count).
 TetClassification classify_tets(const Mesh& mesh, const WindingNumberTree& tree, WindingRule rule);
 
+/// Classifies every live tet by the winding number `winding[t]` given per
+/// tet slot (for instance decided before improvement and carried through it).
+TetClassification classify_by_winding(const Mesh& mesh, std::span<const double> winding, WindingRule rule);
+
 /// How far the tracked surface strayed from each input triangle: per
 /// triangle of `input`, the largest distance of a vertex of a tracked face
 /// carrying its id from its plane (doubles). Rounding moves cut points by
