@@ -281,6 +281,17 @@ TEST_CASE("meshrepair refuses at once a format that cannot store the model withi
     CHECK_THAT(run.err, Catch::Contains("apart where the model lies"));
     CHECK_FALSE(std::filesystem::exists(output));
   }
+  SECTION("format-convert, for a surface it would keep watertight") {
+    TriangleSoup closed = test::cube_soup(0.0, 1.0);
+    for (Vec3d& p : closed.positions) p += Vec3d(1e9, -2e9, 5e8);
+    const auto closed_input = dir / "far_closed.obj", output = dir / "converted.glb";
+    io::write_surface(registry, closed, closed_input);
+    const test::ToolRun run =
+        test::run_tool(tools::format_convert, {closed_input.string(), output.string(), "-q"});
+    CHECK(run.exit_code == 2);
+    CHECK_THAT(run.err, Catch::Contains("apart where the model lies"));
+    CHECK_FALSE(std::filesystem::exists(output));
+  }
   SECTION("doubles hold it") {
     const auto output = dir / "out.obj";
     const test::ToolRun run = test::run_tool(tools::meshrepair, {input.string(), output.string(), "-q"});

@@ -77,6 +77,13 @@ SurfaceWrite write_surface_keeping_watertight(const io::Registry& registry, Tria
     io::write_surface(registry, surface, path, options);
     return {};
   }
+  // Kept watertight, but not by moving it further than meshrepair's default
+  // epsilon: a unit cube 1e9 from the origin became 64 units wide. (Draco
+  // bits the user chose are taken as the precision asked for.)
+  const Eigen::AlignedBox3d box = bounding_box(surface);
+  const CoordinateGrid grid = io::surface_position_grid(registry, path, options, box.min(), box.max());
+  if (grid.kind() != CoordinateGrid::Kind::quantized || finer_draco_grid)
+    require_grid_holds(grid, path, box, 1e-3 * box.diagonal().norm());
   std::vector<Index> welded_index;
   TriangleSoup welded = weld_identical_vertices(surface, welded_index);
   if (welded.positions.size() == surface.positions.size())

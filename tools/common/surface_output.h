@@ -41,7 +41,10 @@ struct SurfaceWrite {
 /// (repair::round_to_grid on the welded surface, Draco's grid fixed here;
 /// vertices split at seams keep their attributes unless rounding had to
 /// collapse vertices) and the file is read back and checked before it is
-/// renamed into place (mr::RunError if it is not watertight); any other
+/// renamed into place (mr::RunError if it is not watertight; mr::UsageError,
+/// before any work, if the format's grid is coarser than 1e-3 of the
+/// surface's bounding-box diagonal where it lies, unless it is a Draco grid
+/// of bits the user chose: finer_draco_grid false); any other
 /// surface (open, pinched, inward) is written as it is. Where no place on a Draco grid is
 /// left for some vertex, the grid gets two more bits (up to 30) unless
 /// `finer_draco_grid` is false (the user chose the bits).
