@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 using namespace mr;
@@ -301,6 +302,39 @@ TEST_CASE("tetrahedralize: on an open input, crossings move and only improved te
   CHECK(report.max_amips <= options.tetrahedralize.stop_energy);
   CHECK(report.min_dihedral_deg > 5.0);
   CHECK(check::one_sided_distance(result.tracked_surface, soup).max <= result.parameters.epsilon);
+}
+
+TEST_CASE("tetrahedralize: -l sets the mean edge length away from the surface", "[tetrahedralize][slow]") {
+  // Issue 22: within 25% of the target, on the edges whose midpoint is more
+  // than two targets from the boundary of the unit cube (near it, edges
+  // follow the surface's own sizing).
+  for (const double relative : {0.03, 0.05}) {
+    tetmesh::PipelineOptions options;
+    options.tetrahedralize.edge_length_rel = relative;
+    options.tetrahedralize.threads = 2;
+    const tetmesh::PipelineResult result = tetmesh::tetrahedralize(test::cube_soup(), options);
+    REQUIRE(check::check_tets(result.mesh).valid());
+    const double target = relative * std::sqrt(3.0);
+    std::set<std::pair<Index, Index>> edges;
+    for (const Tet& t : result.mesh.tets) {
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) edges.insert(std::minmax(t[i], t[j]));
+    }
+    double sum = 0.0;
+    std::size_t far = 0;
+    for (const auto& [a, b] : edges) {
+      const Vec3d& p = result.mesh.positions[a];
+      const Vec3d& q = result.mesh.positions[b];
+      const Vec3d mid = 0.5 * (p + q);
+      if (std::min(mid.minCoeff(), (Vec3d::Ones() - mid).minCoeff()) <= 2 * target) continue;
+      sum += (p - q).norm();
+      ++far;
+    }
+    CAPTURE(relative, far);
+    REQUIRE(far > 100);
+    CHECK(sum / double(far) >= 0.75 * target);
+    CHECK(sum / double(far) <= 1.25 * target);
+  }
 }
 
 TEST_CASE("tetrahedralize: improvement reaches the stop energy where the simplifier used its room",
