@@ -43,10 +43,6 @@ constexpr double kImprovementSamplingRefinement = 8.0;
 // around defects is (simplify_near_defects_only), in vertex rings.
 constexpr int kDefectRings = 2;
 
-void count(StageTimer& timer, const char* key, std::size_t value) {
-  timer.stage().count(key, static_cast<std::int64_t>(value));
-}
-
 TriangleSoup simplified_input(const TriangleSoup& input, const PipelineOptions& options,
                               const DerivedParameters& derived, PipelineStats& stats, const Logger& logger) {
   StageTimer timer(stats, "simplify", logger);
@@ -59,7 +55,7 @@ TriangleSoup simplified_input(const TriangleSoup& input, const PipelineOptions& 
   simplify_options.threads = options.tetrahedralize.threads;
   if (options.tetrahedralize.simplify_near_defects_only) {
     std::vector<std::uint8_t> near = detail::faces_near_defects(input, kDefectRings);
-    count(timer, "faces_near_defects", static_cast<std::size_t>(std::count(near.begin(), near.end(), 1)));
+    timer.count("faces_near_defects", static_cast<std::size_t>(std::count(near.begin(), near.end(), 1)));
     if (std::find(near.begin(), near.end(), 1) == near.end()) {
       timer.stage().count("faces", static_cast<std::int64_t>(input.triangles.size()));
       return input;
@@ -153,8 +149,8 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
     StageTimer timer(stats, "background", logger);
     background = build_background_mesh(surface, spatial::AabbTree(surface),
                                        background_parameters(derived, options.tetrahedralize.threads));
-    count(timer, "vertices", background.mesh.num_vertices());
-    count(timer, "tets", background.mesh.num_tets());
+    timer.count("vertices", background.mesh.num_vertices());
+    timer.count("tets", background.mesh.num_tets());
   }
   Embedding embedding{std::move(background.mesh), {}, {}};
   Mesh& mesh = embedding.mesh;
@@ -164,16 +160,16 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
     insertion.max_tets = options.tetrahedralize.max_insertion_tets;
     InsertionStats inserted =
         insert_triangles(mesh, surface, background.input_vertex, skip, logger, insertion);
-    count(timer, "triangles", inserted.inserted);
-    count(timer, "degenerate_skipped", inserted.degenerate);
-    count(timer, "copies", inserted.copies);
-    count(timer, "coplanar_polygons", inserted.polygons);
-    count(timer, "merged_triangles", inserted.merged);
-    count(timer, "left_out", inserted.skipped);
-    count(timer, "cut_points", inserted.new_vertices);
-    count(timer, "steiner_points", inserted.steiner_points);
-    count(timer, "eagerly_rounded", inserted.eagerly_rounded);
-    count(timer, "tets", mesh.num_tets());
+    timer.count("triangles", inserted.inserted);
+    timer.count("degenerate_skipped", inserted.degenerate);
+    timer.count("copies", inserted.copies);
+    timer.count("coplanar_polygons", inserted.polygons);
+    timer.count("merged_triangles", inserted.merged);
+    timer.count("left_out", inserted.skipped);
+    timer.count("cut_points", inserted.new_vertices);
+    timer.count("steiner_points", inserted.steiner_points);
+    timer.count("eagerly_rounded", inserted.eagerly_rounded);
+    timer.count("tets", mesh.num_tets());
     embedding.creator = std::move(inserted.vertex_creator);
     embedding.marked_as = std::move(inserted.marked_as);
   }
@@ -181,16 +177,16 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
   // A cut point closer than this to a neighbour may be merged with it: far
   // below epsilon, so the tracked surface stays in the envelope.
   const detail::RoundingCounters rounding = detail::round_or_collapse(mesh, 1e-3 * derived.epsilon);
-  count(timer, "rounded", rounding.rounded);
-  count(timer, "collapsed", rounding.collapsed);
+  timer.count("rounded", rounding.rounded);
+  timer.count("collapsed", rounding.collapsed);
   std::size_t remaining = rounding.remaining;
   if (remaining != 0) {
     // Moves within the envelope: to nearby doubles, or onto any neighbour.
     const RoundingStats moved = round_vertices(mesh, bounds, logger);
-    count(timer, "moved", moved.moved + moved.collapsed);
+    timer.count("moved", moved.moved + moved.collapsed);
     remaining = moved.remaining;
   }
-  count(timer, "rational_vertices", remaining);
+  timer.count("rational_vertices", remaining);
   return embedding;
 }
 
@@ -228,20 +224,20 @@ detail::CarriedDecision improve(Mesh& mesh, const SurfaceBounds& bounds, std::sp
     // closed but not manifold, left it by 1.4 eps with released junctions.)
     const bool open_input = bounds.open_boundary != nullptr;
     improve_options.release_junctions = by_region || (open_input && !payload.fate.empty());
-    count(timer, "junctions_released", improve_options.release_junctions ? 1 : 0);
-    count(timer, "dropped_tets", std::size_t(std::count(payload.fate.begin(), payload.fate.end(), kDropped)));
+    timer.count("junctions_released", improve_options.release_junctions ? 1 : 0);
+    timer.count("dropped_tets", std::size_t(std::count(payload.fate.begin(), payload.fate.end(), kDropped)));
   }
   const ImproveStats improved = improve_mesh(mesh, bounds, improve_options, payload, logger);
-  count(timer, "passes", static_cast<std::size_t>(improved.passes));
-  count(timer, "splits", improved.splits);
-  count(timer, "collapses", improved.collapses);
-  count(timer, "swaps", improved.swaps_32 + improved.swaps_23 + improved.swaps_44 + improved.edge_removals);
-  count(timer, "smoothing_moves", improved.smoothing_moves);
-  count(timer, "rational_vertices", improved.rational_vertices);
+  timer.count("passes", static_cast<std::size_t>(improved.passes));
+  timer.count("splits", improved.splits);
+  timer.count("collapses", improved.collapses);
+  timer.count("swaps", improved.swaps_32 + improved.swaps_23 + improved.swaps_44 + improved.edge_removals);
+  timer.count("smoothing_moves", improved.smoothing_moves);
+  timer.count("rational_vertices", improved.rational_vertices);
   if (improved.rational_vertices != 0) {
     // Its collapses make tets that carry nothing.
     const RoundingStats rounded = round_vertices(mesh, bounds, logger);
-    count(timer, "rational_vertices_after_rounding", rounded.remaining);
+    timer.count("rational_vertices_after_rounding", rounded.remaining);
     return {};
   }
   return {std::move(payload.value), std::move(payload.fate)};
@@ -254,7 +250,7 @@ TriangleSoup snapped_surface(const TriangleSoup& surface, double spacing, Pipeli
   TriangleSoup snapped = surface;
   if (spacing > 0) {
     timer.stage().count("grid_log2", std::ilogb(spacing));
-    count(timer, "moved_vertices", snap_to_grid(snapped, spacing));
+    timer.count("moved_vertices", snap_to_grid(snapped, spacing));
   }
   return snapped;
 }
@@ -362,12 +358,12 @@ EmbeddedSurface embed_and_improve(const TriangleSoup& simplified, const SurfaceB
 TriangleSoup oriented_input(const TriangleSoup& input, PipelineStats& stats, const Logger& logger) {
   StageTimer timer(stats, "orient", logger);
   TriangleSoup oriented = input;
-  count(timer, "repeated_faces_dropped", drop_repeated_faces(oriented));
-  count(timer, "double_sided_copies_dropped", make_double_sided_components_one_sided(oriented));
+  timer.count("repeated_faces_dropped", drop_repeated_faces(oriented));
+  timer.count("double_sided_copies_dropped", make_double_sided_components_one_sided(oriented));
   const OrientationStats orientation = orient_coherently(oriented);
-  count(timer, "patches", orientation.patches);
-  count(timer, "flipped", orientation.flipped);
-  count(timer, "conflicts", orientation.conflicts);
+  timer.count("patches", orientation.patches);
+  timer.count("flipped", orientation.flipped);
+  timer.count("conflicts", orientation.conflicts);
   return oriented;
 }
 
@@ -383,7 +379,7 @@ void label_parts(TetMesh& out, const Mesh& mesh, std::span<const char> keep, con
   out.tet_label_names = std::move(parts.names);
   std::vector<std::int32_t> distinct = out.tet_labels;
   std::sort(distinct.begin(), distinct.end());
-  count(timer, "labels", std::size_t(std::unique(distinct.begin(), distinct.end()) - distinct.begin()));
+  timer.count("labels", std::size_t(std::unique(distinct.begin(), distinct.end()) - distinct.begin()));
 }
 
 // `stats` carries the stages of an earlier run, if any: their times add up.
@@ -414,7 +410,7 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
       const TetClassification classes = detail::filter_tets(mesh, surface, left_out, embedded.carried,
                                                             derived.epsilon, *envelope, rule, timer);
       keep = classes.keep;
-      count(timer, "kept_tets", classes.kept);
+      timer.count("kept_tets", classes.kept);
     }
   }
   {
@@ -443,8 +439,8 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
                      " tets are not positively oriented on the written "
                      "coordinates (internal error); the mesh is not written");
     }
-    count(timer, "tets", result.mesh.tets.size());
-    count(timer, "vertices", result.mesh.positions.size());
+    timer.count("tets", result.mesh.tets.size());
+    timer.count("vertices", result.mesh.positions.size());
   }
   return result;
 }
