@@ -274,6 +274,28 @@ TEST_CASE("tetrahedralize: improvement clears slivers along lines where parts cr
   CHECK(check::one_sided_distance(result.tracked_surface, soup).max <= result.parameters.epsilon);
 }
 
+TEST_CASE("tetrahedralize: a copy grazing its original leaves no flat tets between them",
+          "[tetrahedralize][slow]") {
+  // The cube and a copy turned by 0.002 radians and moved by half of
+  // epsilon: each face of one crosses the other's at a tiny angle, so the
+  // space between them is a fraction of epsilon thick. The inner sheet
+  // decides nothing (kept on both sides) and may be pinched onto the outer.
+  TriangleSoup copy = test::cube_soup();
+  const double epsilon = 1e-3 * std::sqrt(3.0);
+  const Eigen::AngleAxisd turn(0.002, Vec3d(1, 2, 3).normalized());
+  const Vec3d shift = 0.5 * epsilon * Vec3d(3, 2, 1).normalized();
+  for (Vec3d& p : copy.positions) p = turn * (p - Vec3d(0.5, 0.5, 0.5)) + Vec3d(0.5, 0.5, 0.5) + shift;
+  const TriangleSoup soup = merged(test::cube_soup(), copy);
+  const tetmesh::PipelineResult result = tetmesh::tetrahedralize(soup, {});
+  CHECK(stage_count(result.stats, "filter", "carried_by_region") == 1);
+  const check::TetReport report = check::check_tets(result.mesh);
+  CHECK(report.valid());
+  CHECK(report.boundary.watertight());
+  CHECK(report.max_amips <= tetmesh::TetrahedralizeOptions().stop_energy);
+  CHECK(report.min_dihedral_deg > 5.0);
+  CHECK(check::one_sided_distance(result.tracked_surface, soup).max <= result.parameters.epsilon);
+}
+
 TEST_CASE("tetrahedralize: on an open input, crossings move and only improved tets are kept",
           "[tetrahedralize][slow]") {
   // Two open boxes (no lid) crossing at a slant. The filter decides per tet
