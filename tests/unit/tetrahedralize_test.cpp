@@ -296,6 +296,26 @@ TEST_CASE("tetrahedralize: a copy grazing its original leaves no flat tets betwe
   CHECK(check::one_sided_distance(result.tracked_surface, soup).max <= result.parameters.epsilon);
 }
 
+TEST_CASE("tetrahedralize: a gap thinner than epsilon between two parts is not pinched shut",
+          "[tetrahedralize][slow]") {
+  // Two cubes a third of epsilon apart, the second turned a little so the
+  // gap is no lattice plane. The faces on either side of the gap each
+  // separate kept from removed tets, so they bind every collapse: the
+  // written parts stay apart, each a closed manifold.
+  TriangleSoup second = test::cube_soup();
+  const double epsilon = 1e-3 * std::sqrt(2.0 * 2.0 + 1.0 + 1.0);
+  const Eigen::AngleAxisd turn(0.0005, Vec3d(0, 1, 2).normalized());
+  for (Vec3d& p : second.positions) p = turn * (p - Vec3d(0, 0.5, 0.5)) + Vec3d(1 + epsilon / 3, 0.5, 0.5);
+  const TriangleSoup soup = merged(test::cube_soup(), second);
+  const tetmesh::PipelineResult result = tetmesh::tetrahedralize(soup, {});
+  const check::TetReport report = check::check_tets(result.mesh);
+  CHECK(report.valid());
+  CHECK(report.boundary.watertight());
+  CHECK(report.boundary.components == 2);
+  CHECK(std::abs(report.volume - 2.0) <= 10 * epsilon);
+  CHECK(check::one_sided_distance(result.tracked_surface, soup).max <= result.parameters.epsilon);
+}
+
 TEST_CASE("tetrahedralize: on an open input, crossings move and only improved tets are kept",
           "[tetrahedralize][slow]") {
   // Two open boxes (no lid) crossing at a slant. The filter decides per tet
