@@ -1,4 +1,5 @@
 #include "simplify_in_envelope.h"
+#include "surface_output.h"
 
 #include <mr/check/distance.h>
 #include <mr/cli/run_tool.h>
@@ -38,6 +39,9 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       "copies of a face (double-sided surfaces) are simplified as one and all written out.\n"
       "Each patch of faces connected through manifold edges is first oriented coherently, the\n"
       "way most of its area faces; faces that disagreed with it are written reversed.\n"
+      "A watertight result is rounded onto the output's grid (float32, Draco's, chosen from\n"
+      "epsilon) keeping it watertight, and the written file is checked; a format that cannot\n"
+      "store the model within epsilon where it lies is refused before any work.\n"
       "The output is the same for any thread count.";
   auto& s = o.simplify;
   spec.options = {
@@ -86,6 +90,20 @@ nlohmann::json make_stats(const ToolOptions& o, const TriangleSoup& input,
       {"distance_samples", distance.samples}};
 }
 
+// Refuses, before any work, an output format that cannot store the input
+// within epsilon where it lies (require_grid_holds); Draco's bits are
+// chosen from epsilon, as meshrepair does.
+void check_output_precision(const io::Registry& registry, const std::string& out, const TriangleSoup& input,
+                            ToolOptions& options) {
+  const Eigen::AlignedBox3d box = bounding_box(input);
+  const simplify::SimplifyOptions& s = options.simplify;
+  const double epsilon = s.epsilon_abs > 0.0 ? s.epsilon_abs : s.epsilon_rel * box.diagonal().norm();
+  if (!(epsilon > 0.0)) return;  // simplify_in_envelope refuses it
+  options.write.draco.position_bits = draco_position_bits_for(box.sizes().maxCoeff(), epsilon);
+  require_grid_holds(io::surface_position_grid(registry, out, options.write, box.min(), box.max()), out, box,
+                     epsilon);
+}
+
 void print_details(const simplify::SimplifyResult& r, std::ostream& err) {
   err << "simplify-in-envelope: " << r.reoriented_faces
       << " faces reversed to orient their patch coherently, " << r.kept_aside_faces << " faces kept aside, "
@@ -102,8 +120,11 @@ int simplify_in_envelope(const std::vector<std::string>& args, std::ostream& out
   return cli::run_tool(spec, args, out, err, [&](const std::vector<std::string>& files) {
     const io::Registry registry = io::make_default_registry();
     const TriangleSoup input = io::read_surface(registry, files[0]);
+    check_output_precision(registry, files[1], input, options);
     const simplify::SimplifyResult result = simplify::simplify_in_envelope(input, options.simplify);
-    io::write_surface(registry, result.soup, files[1], options.write);
+    // A watertight result is rounded onto the file's grid keeping it so,
+    // and checked as written.
+    write_surface_keeping_watertight(registry, result.soup, files[1], options.write);
     if (!options.stats_path.empty()) {
       cli::write_stats_file(options.stats_path, make_stats(options, input, result).dump(2));
     }

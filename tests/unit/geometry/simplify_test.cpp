@@ -5,6 +5,7 @@
 #include <mr/check/distance.h>
 #include <mr/check/surface_check.h>
 #include <mr/core/errors.h>
+#include <mr/core/weld.h>
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
 #include <mr/simplify/simplify.h>
@@ -552,6 +553,29 @@ TEST_CASE("simplify-in-envelope runs end to end", "[simplify][slow]") {
   const auto quiet = run_simplify({(dir / "in.stl").string(), (dir / "out2.obj").string(), "-q"});
   CHECK(quiet.exit_code == 0);
   CHECK(quiet.out.empty());
+}
+
+TEST_CASE("simplify-in-envelope writes a closed surface watertight in float32 files, or refuses at once",
+          "[simplify][slow]") {
+  mr::test::TempDir dir("simplify_tool_precision");
+  const auto registry = mr::io::make_default_registry();
+  mr::io::write_surface(registry, icosphere(3), dir / "sphere.obj");
+  for (const char* name : {"out.stl", "out.glb", "out.drc"}) {
+    const auto run = run_simplify({(dir / "sphere.obj").string(), (dir / name).string(), "-q"});
+    INFO(name << ": " << run.err);
+    REQUIRE(run.exit_code == 0);
+    const TriangleSoup written = mr::weld_identical_vertices(mr::io::read_surface(registry, dir / name));
+    CHECK(mr::check::check_surface(written).watertight());
+  }
+  // A billion units from the origin float32 positions are 64 apart, and
+  // epsilon is about 2e-3: nothing is simplified or written.
+  TriangleSoup far = icosphere(3);
+  for (Vec3d& p : far.positions) p += Vec3d(1e9, -2e9, 5e8);
+  mr::io::write_surface(registry, far, dir / "far.obj");
+  const auto refused = run_simplify({(dir / "far.obj").string(), (dir / "far.stl").string()});
+  CHECK(refused.exit_code == 2);
+  CHECK(refused.err.find("far.stl") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir / "far.stl"));
 }
 
 TEST_CASE("simplify-in-envelope refuses bad input and usage", "[simplify]") {
