@@ -67,27 +67,35 @@ cli::ToolSpec make_spec(ToolOptions& o) {
   return spec;
 }
 
-nlohmann::json make_stats(const ToolOptions& o, const TriangleSoup& input,
-                          const simplify::SimplifyResult& r) {
+nlohmann::json make_stats(const ToolOptions& o, const TriangleSoup& input, const simplify::SimplifyResult& r,
+                          const SurfaceWrite& w) {
   const check::DistanceReport distance = check::one_sided_distance(r.soup, input);
   const double diagonal = bounding_box_diagonal(input);
-  return {
-      {"faces_before", r.faces_before},
-      {"faces_after", r.faces_after},
-      {"kept_aside_faces", r.kept_aside_faces},
-      {"duplicate_faces", r.duplicate_faces},
-      {"reoriented_faces", r.reoriented_faces},
-      {"locked_vertices", r.locked_vertices},
-      {"collapses", r.collapses},
-      {"flips", r.flips},
-      {"epsilon_rel",
-       o.simplify.epsilon_abs > 0.0 && diagonal > 0.0 ? r.epsilon / diagonal : o.simplify.epsilon_rel},
-      {"epsilon_abs", r.epsilon},
-      {"bbox_diagonal", diagonal},
-      {"seconds", {{"setup", r.seconds_setup}, {"collapse", r.seconds_collapse}, {"flip", r.seconds_flip}}},
-      {"distance_to_input_max", distance.max},
-      {"distance_to_input_mean", distance.mean},
-      {"distance_samples", distance.samples}};
+  return {{"faces_before", r.faces_before},
+          {"faces_after", r.faces_after},
+          {"kept_aside_faces", r.kept_aside_faces},
+          {"duplicate_faces", r.duplicate_faces},
+          {"reoriented_faces", r.reoriented_faces},
+          {"locked_vertices", r.locked_vertices},
+          {"collapses", r.collapses},
+          {"flips", r.flips},
+          {"epsilon_rel",
+           o.simplify.epsilon_abs > 0.0 && diagonal > 0.0 ? r.epsilon / diagonal : o.simplify.epsilon_rel},
+          {"epsilon_abs", r.epsilon},
+          {"bbox_diagonal", diagonal},
+          {"seconds",
+           {{"setup", r.seconds_setup},
+            {"collapse", r.seconds_collapse},
+            {"flip", r.seconds_flip},
+            {"check_written", w.written.seconds}}},
+          {"written",
+           {{"kept_watertight", w.watertight},
+            {"rounded_vertices", w.rounding.moved},
+            {"rounding_collapsed", w.rounding.collapsed},
+            {"rounding_max_move", w.rounding.max_move}}},
+          {"distance_to_input_max", distance.max},
+          {"distance_to_input_mean", distance.mean},
+          {"distance_samples", distance.samples}};
 }
 
 // Refuses, before any work, an output format that cannot store the input
@@ -124,9 +132,10 @@ int simplify_in_envelope(const std::vector<std::string>& args, std::ostream& out
     const simplify::SimplifyResult result = simplify::simplify_in_envelope(input, options.simplify);
     // A watertight result is rounded onto the file's grid keeping it so,
     // and checked as written.
-    write_surface_keeping_watertight(registry, result.soup, files[1], options.write);
+    const SurfaceWrite written =
+        write_surface_keeping_watertight(registry, result.soup, files[1], options.write);
     if (!options.stats_path.empty()) {
-      cli::write_stats_file(options.stats_path, make_stats(options, input, result).dump(2));
+      cli::write_stats_file(options.stats_path, make_stats(options, input, result, written).dump(2));
     }
     if (options.quiet) return;
     out << files[0] << ": " << result.faces_before << " -> " << result.faces_after << " faces ("

@@ -548,7 +548,9 @@ TEST_CASE("simplify-in-envelope runs end to end", "[simplify][slow]") {
   CHECK(stats["faces_after"] == output.triangles.size());
   CHECK(stats["epsilon_rel"].get<double>() == Approx(5e-3));
   CHECK(stats["distance_to_input_max"].get<double>() <= stats["epsilon_abs"].get<double>());
-  for (const char* phase : {"setup", "collapse", "flip"}) CHECK(stats["seconds"].contains(phase));
+  for (const char* phase : {"setup", "collapse", "flip", "check_written"})
+    CHECK(stats["seconds"].contains(phase));
+  CHECK(stats["written"]["kept_watertight"] == true);
 
   const auto quiet = run_simplify({(dir / "in.stl").string(), (dir / "out2.obj").string(), "-q"});
   CHECK(quiet.exit_code == 0);
