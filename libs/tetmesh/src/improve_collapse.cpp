@@ -189,9 +189,14 @@ struct SurfaceAt {
   bool free_sheet() const { return !tracked.empty() && binding.empty(); }
 };
 
+std::vector<TrackedFace> binding_faces_at(const Workspace& ws, bool carried, std::span<const Index> star,
+                                          Index v) {
+  return carried ? deciding_faces_at(ws, star, v) : tracked_faces_at(ws.mesh, star, v);
+}
+
 SurfaceAt surface_at(const Workspace& ws, bool carried, std::span<const Index> star, Index v) {
   SurfaceAt at{tracked_faces_at(ws.mesh, star, v), {}};
-  at.binding = carried && !at.tracked.empty() ? deciding_faces_at(ws, star, v) : at.tracked;
+  if (!at.tracked.empty()) at.binding = carried ? deciding_faces_at(ws, star, v) : at.tracked;
   return at;
 }
 
@@ -215,6 +220,24 @@ bool open_edges_inside(const Workspace& ws, const std::vector<TrackedFace>& at_u
     if (!ws.open_boundary->is_inside(pv, ws.mesh.position(x).approx)) return false;
   }
   return true;
+}
+
+// Whether the tracked faces at u, moved onto v, keep what they must: the
+// binding ones their topology (surface_allows), all of them the envelope,
+// and the open edges among them the envelope of the input's open edges.
+bool surface_keeps(const Workspace& ws, bool carried, const SurfaceAt& at_u, std::span<const Index> star_v,
+                   Index u, Index v) {
+  if (at_u.tracked.empty()) return true;
+  if (!at_u.binding.empty() && !surface_allows(at_u.binding, binding_faces_at(ws, carried, star_v, v), u, v))
+    return false;
+  std::vector<FaceCorners> moved_faces;
+  for (const TrackedFace& f : at_u.tracked) {
+    if (contains(f.key, v)) continue;
+    FaceCorners corners = f.key;
+    std::replace(corners.begin(), corners.end(), u, v);
+    moved_faces.push_back(corners);
+  }
+  return faces_inside(ws, moved_faces) && open_edges_inside(ws, at_u.tracked, u, v);
 }
 
 // How much a collapse for quality raises the largest energy of the tets
@@ -274,21 +297,7 @@ bool try_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal) {
   const SurfaceAt at_u = surface_at(ws, carried, star_u, u);
   const bool pinch = at_u.free_sheet() && faces_on_edge(at_u.tracked, u, v) == 0;
   if (raise > 1.0 && !pinch) return false;
-  if (!at_u.tracked.empty()) {
-    if (!at_u.binding.empty() &&
-        !surface_allows(at_u.binding, surface_at(ws, carried, star_v, v).binding, u, v)) {
-      return false;
-    }
-    std::vector<FaceCorners> moved_faces;
-    for (const TrackedFace& f : at_u.tracked) {
-      if (contains(f.key, v)) continue;
-      FaceCorners corners = f.key;
-      std::replace(corners.begin(), corners.end(), u, v);
-      moved_faces.push_back(corners);
-    }
-    if (!faces_inside(ws, moved_faces)) return false;
-    if (!open_edges_inside(ws, at_u.tracked, u, v)) return false;
-  }
+  if (!surface_keeps(ws, carried, at_u, star_v, u, v)) return false;
 
   const auto parents = [u, v](const FaceKey& face, std::vector<FaceKey>& out) {
     out.push_back(face);
