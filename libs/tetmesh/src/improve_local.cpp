@@ -55,11 +55,17 @@ std::vector<Index> Workspace::star(Index v) {
 }
 
 std::vector<Index> Workspace::edge_tets(Index a, Index b, Index hint) {
-  if (hint != kNoTet && mesh.tet_alive(hint) && mesh.corner_of(hint, a) >= 0 && mesh.corner_of(hint, b) >= 0)
-    return tets_around_edge(mesh, a, b, hint);
-  std::vector<Index> tets = star(a);
-  std::erase_if(tets, [&](Index t) { return mesh.corner_of(t, b) < 0; });
-  return tets;
+  const auto has_edge = [&](Index t) {
+    return t != kNoTet && mesh.tet_alive(t) && mesh.corner_of(t, a) >= 0 && mesh.corner_of(t, b) >= 0;
+  };
+  if (!has_edge(hint)) {
+    if (!mesh.vertex_alive(a) || !mesh.vertex_alive(b)) return {};
+    const Index seed = find_seed(a);
+    if (seed == kNoTet) return {};
+    hint = tet_with_edge(mesh, a, b, seed);
+    if (hint == kNoTet) return {};
+  }
+  return tets_around_edge(mesh, a, b, hint);
 }
 
 double Workspace::target(Index a, Index b) const {

@@ -58,7 +58,7 @@ class Workspace {
   std::vector<Index> star(Index v);
   /// The tets containing edge (a, b), sorted; empty if it is not an edge.
   /// `hint`, when it is a live tet with both corners, saves the walk around
-  /// a's whole star.
+  /// a's star to find one (long on the cut points where many triangles cross).
   std::vector<Index> edge_tets(Index a, Index b, Index hint = kNoTet);
   /// Target length of edge (a, b) under the local sizing.
   double target(Index a, Index b) const;
@@ -116,8 +116,10 @@ bool vertex_on_hull(const Mesh& mesh, std::span<const Index> tets, Index v);
 
 // ---- operations (each in its own improve_*.cpp) ----
 
-/// Splits edge (a, b) at its midpoint if allowed; returns the new vertex or kNoVertex.
-Index try_split(Workspace& ws, Index a, Index b, const HybridPoint& at, bool check_envelope);
+/// Splits edge (a, b) at `at` if allowed; returns the new vertex or kNoVertex.
+/// `hint`: as for Workspace::edge_tets.
+Index try_split(Workspace& ws, Index a, Index b, const HybridPoint& at, bool check_envelope,
+                Index hint = kNoTet);
 
 enum class CollapseGoal { quality, rounding };
 /// Collapses u onto v if every check passes.

@@ -20,22 +20,24 @@ namespace {
 struct EdgeCandidate {
   double length;
   Index a, b;
+  Index tet;  ///< a tet that had the edge when candidates were collected
 };
 
-// The edges of the tets that count.
-std::vector<std::array<Index, 2>> counted_edges(const Workspace& ws) {
+// The edges of the tets that count, each with the lowest such tet: {a, b, tet}, a < b.
+std::vector<std::array<Index, 3>> counted_edges(const Workspace& ws) {
   const Mesh& mesh = ws.mesh;
-  std::vector<std::array<Index, 2>> edges;
+  std::vector<std::array<Index, 3>> edges;
   edges.reserve(mesh.num_tets() * 6);
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
     if (!mesh.tet_alive(t) || !ws.counts(t)) continue;
     const Tet& c = mesh.tet(t);
     for (int i = 0; i < 4; ++i) {
-      for (int j = i + 1; j < 4; ++j) edges.push_back({std::min(c[i], c[j]), std::max(c[i], c[j])});
+      for (int j = i + 1; j < 4; ++j) edges.push_back({std::min(c[i], c[j]), std::max(c[i], c[j]), t});
     }
   }
   tbb::parallel_sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  const auto same_edge = [](const auto& x, const auto& y) { return x[0] == y[0] && x[1] == y[1]; };
+  edges.erase(std::unique(edges.begin(), edges.end(), same_edge), edges.end());
   return edges;
 }
 
@@ -48,9 +50,9 @@ double edge_length(const Mesh& mesh, Index a, Index b) {
 template <class Keep>
 std::vector<EdgeCandidate> edge_candidates(const Workspace& ws, Keep keep, bool longest_first) {
   std::vector<EdgeCandidate> out;
-  for (const auto& [a, b] : counted_edges(ws)) {
+  for (const auto& [a, b, tet] : counted_edges(ws)) {
     const double length = edge_length(ws.mesh, a, b);
-    if (keep(length, ws.target(a, b))) out.push_back({length, a, b});
+    if (keep(length, ws.target(a, b))) out.push_back({length, a, b, tet});
   }
   std::sort(out.begin(), out.end(), [&](const EdgeCandidate& x, const EdgeCandidate& y) {
     if (x.length != y.length) return longest_first ? x.length > y.length : x.length < y.length;
@@ -100,7 +102,7 @@ std::size_t split_pass(Workspace& ws) {
   const auto long_edge = [](double length, double target) { return length > 4.0 / 3.0 * target; };
   for (const EdgeCandidate& e : edge_candidates(ws, long_edge, true)) {
     const Vec3d middle = 0.5 * (ws.mesh.position(e.a).approx + ws.mesh.position(e.b).approx);
-    if (try_split(ws, e.a, e.b, HybridPoint(middle), true) != kNoVertex) ++done;
+    if (try_split(ws, e.a, e.b, HybridPoint(middle), true, e.tet) != kNoVertex) ++done;
   }
   return done;
 }

@@ -32,9 +32,9 @@ ParentFaces split_parents(Index a, Index b, Index m) {
 
 }  // namespace
 
-Index try_split(Workspace& ws, Index a, Index b, const HybridPoint& at, bool check_envelope) {
+Index try_split(Workspace& ws, Index a, Index b, const HybridPoint& at, bool check_envelope, Index hint) {
   Mesh& mesh = ws.mesh;
-  const std::vector<Index> old_tets = ws.edge_tets(a, b);
+  const std::vector<Index> old_tets = ws.edge_tets(a, b, hint);
   if (old_tets.empty()) return kNoVertex;
 
   std::vector<Tet> new_tets;

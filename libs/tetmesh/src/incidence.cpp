@@ -22,11 +22,12 @@ VertexTets::VertexTets(const Mesh& mesh) : offsets_(mesh.vertex_slots() + 1, 0) 
   }
 }
 
-std::vector<Index> tets_around_vertex(const Mesh& mesh, Index v, Index seed) {
-  if (!mesh.tet_alive(seed) || mesh.corner_of(seed, v) < 0) {
-    throw UsageError("tets_around_vertex: seed tet " + std::to_string(seed) +
-                     " is not a live tet with vertex " + std::to_string(v));
-  }
+namespace {
+
+// Walks the tets around vertex v from `seed` (breadth first over faces that
+// contain v) until `stop` returns true for a tet; returns the tets visited.
+template <class Stop>
+std::vector<Index> walk_star(const Mesh& mesh, Index v, Index seed, Stop stop) {
   // Most stars have a few dozen tets, where a linear search of the star is
   // fastest; cut points on lines where many triangles cross have thousands,
   // where it was quadratic, so a hash set takes over past a size.
@@ -42,6 +43,7 @@ std::vector<Index> tets_around_vertex(const Mesh& mesh, Index v, Index seed) {
   };
   for (std::size_t i = 0; i < star.size(); ++i) {
     const Index t = star[i];
+    if (stop(t)) break;
     const int opposite = mesh.corner_of(t, v);
     for (int f = 0; f < 4; ++f) {
       const Index u = mesh.neighbour(t, f);
@@ -50,8 +52,34 @@ std::vector<Index> tets_around_vertex(const Mesh& mesh, Index v, Index seed) {
       if (is_new(u)) star.push_back(u);
     }
   }
+  return star;
+}
+
+void require_corner(const Mesh& mesh, Index v, Index seed, const char* caller) {
+  if (!mesh.tet_alive(seed) || mesh.corner_of(seed, v) < 0) {
+    throw UsageError(std::string(caller) + ": seed tet " + std::to_string(seed) +
+                     " is not a live tet with vertex " + std::to_string(v));
+  }
+}
+
+}  // namespace
+
+std::vector<Index> tets_around_vertex(const Mesh& mesh, Index v, Index seed) {
+  require_corner(mesh, v, seed, "tets_around_vertex");
+  std::vector<Index> star = walk_star(mesh, v, seed, [](Index) { return false; });
   std::sort(star.begin(), star.end());
   return star;
+}
+
+Index tet_with_edge(const Mesh& mesh, Index a, Index b, Index seed) {
+  require_corner(mesh, a, seed, "tet_with_edge");
+  Index found = kNoTet;
+  walk_star(mesh, a, seed, [&](Index t) {
+    if (mesh.corner_of(t, b) < 0) return false;
+    found = t;
+    return true;
+  });
+  return found;
 }
 
 std::vector<Index> tets_around_edge(const Mesh& mesh, Index a, Index b, Index seed) {

@@ -213,7 +213,7 @@ TEST_CASE("tetmesh: split at a rational point, round it, compact", "[tetmesh]") 
   CHECK(maps.tet_map[star.back()] == kNoTet);
 }
 
-TEST_CASE("tetmesh: the walk around an edge finds what the vertex star does", "[tetmesh]") {
+TEST_CASE("tetmesh: the walks around an edge find what the vertex star does", "[tetmesh]") {
   // A background mesh of a cube: interior edges with full rings, and edges
   // on the box whose tets form an open fan.
   const TriangleSoup cube = test::cube_soup();
@@ -231,6 +231,9 @@ TEST_CASE("tetmesh: the walk around an edge finds what the vertex star does", "[
         std::erase_if(expected, [&](Index u) { return mesh.corner_of(u, b) < 0; });
         const std::vector<Index> ring = tets_around_edge(mesh, a, b, t);
         REQUIRE(ring == expected);
+        // From the last tet of a's star, the walk finds one of the ring.
+        const Index far_seed = tets_around_vertex(mesh, a, t).back();
+        REQUIRE(std::binary_search(ring.begin(), ring.end(), tet_with_edge(mesh, a, b, far_seed)));
         ++edges;
         for (Index u : ring)
           for (int f = 0; f < 4; ++f)
@@ -239,6 +242,17 @@ TEST_CASE("tetmesh: the walk around an edge finds what the vertex star does", "[
   }
   CHECK(edges > 1000);
   CHECK(fans > 0);  // some edges lie on the box
+  // A vertex outside a's star shares no tet with it.
+  const Tet first = mesh.tet(0);
+  Index not_neighbour = kNoTet;
+  const std::vector<Index> star = tets_around_vertex(mesh, first[0], 0);
+  for (Index v = 0; v < mesh.vertex_slots() && not_neighbour == kNoTet; ++v) {
+    if (std::none_of(star.begin(), star.end(), [&](Index u) { return mesh.corner_of(u, v) >= 0; }))
+      not_neighbour = v;
+  }
+  REQUIRE(not_neighbour != kNoTet);
+  CHECK(tet_with_edge(mesh, first[0], not_neighbour, 0) == kNoTet);
+  CHECK_THROWS_AS(tet_with_edge(mesh, Index(mesh.vertex_slots() + 5), first[0], 0), UsageError);
   CHECK_THROWS_AS(tets_around_edge(mesh, mesh.tet(0)[0], Index(mesh.vertex_slots() + 5), 0), UsageError);
 }
 

@@ -33,4 +33,9 @@ std::vector<Index> tets_around_vertex(const Mesh& mesh, Index v, Index seed);
 /// otherwise). Sorted by tet index. Cost: proportional to the edge's valence.
 std::vector<Index> tets_around_edge(const Mesh& mesh, Index a, Index b, Index seed);
 
+/// A live tet with corners a and b, found by walking a's star from `seed` (a
+/// live tet with corner a, mr::UsageError otherwise) until one has b; kNoTet
+/// if none has. Cost: at most the size of a's star, usually far less.
+Index tet_with_edge(const Mesh& mesh, Index a, Index b, Index seed);
+
 }  // namespace mr::tetmesh
