@@ -152,7 +152,15 @@ bool AabbTree::one_triangle_near_all(std::span<const Vec3d> points, double r_sq)
   bool found = false;
   traverse(points[0], bound_sq, [&](std::uint32_t slot) {
     const Vec3d* c = &corners_[3 * std::size_t{slot}];
-    found = std::all_of(points.begin(), points.end(), [&](const Vec3d& p) {
+    // Most triangles near points[0] are far from another point: their box
+    // says so before any exact distance, and the last points decide first.
+    const Vec3d lo = c[0].cwiseMin(c[1]).cwiseMin(c[2]);
+    const Vec3d hi = c[0].cwiseMax(c[1]).cwiseMax(c[2]);
+    const auto box_near = [&](const Vec3d& p) {
+      return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).squaredNorm() <= r_sq;
+    };
+    if (!std::all_of(points.begin(), points.end(), box_near)) return false;
+    found = std::all_of(points.rbegin(), points.rend(), [&](const Vec3d& p) {
       return squared_distance_to_triangle(p, c[0], c[1], c[2]) <= r_sq;
     });
     return found;
