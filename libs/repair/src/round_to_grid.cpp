@@ -59,6 +59,8 @@ Incidence incidence_of(const TriangleSoup& surface) {
 
 class VertexPlacement {
  public:
+  static constexpr Index kNoFace = std::numeric_limits<Index>::max();
+
   VertexPlacement(TriangleSoup& surface, const CoordinateGrid& grid, const GridRoundingOptions& options)
       : surface_(surface),
         grid_(grid),
@@ -67,7 +69,8 @@ class VertexPlacement {
         incidence_(incidence_of(surface)),
         on_grid_(surface.positions.size(), 0),
         collapsed_(surface.positions.size(), 0),
-        removed_(surface.triangles.size(), 0) {
+        removed_(surface.triangles.size(), 0),
+        last_refusal_(surface.positions.size(), kNoFace) {
     for (std::size_t v = 0; v < original_.size(); ++v) occupied_.emplace(original_[v], static_cast<Index>(v));
     build_reach();
   }
@@ -378,25 +381,40 @@ class VertexPlacement {
       const auto& m = moved.back();
       if (collinear(m[0], m[1], m[2])) return false;
     }
-    const auto improper = [](const std::array<Vec3d, 3>& a, const std::array<Vec3d, 3>& b) {
-      return intersect_triangles(a[0], a[1], a[2], b[0], b[1], b[2]).improper();
-    };
+    // The face that refused v's last candidate usually refuses the next one
+    // too (a sheet closer than a grid step): asked first, it saves scanning
+    // every face near v with exact tests that coplanar sheets make slow.
+    Index& last = last_refusal_[v];
+    if (last != kNoFace && std::find(nearby.begin(), nearby.end(), last) == nearby.end()) last = kNoFace;
+    if (last != kNoFace && meets_moved(moved, last, v, c)) return false;
     for (std::size_t i = 0; i < moved.size(); ++i)
       for (std::size_t j = i + 1; j < moved.size(); ++j)
         if (improper(moved[i], moved[j])) return false;
-    for (std::size_t i = 0; i < moved.size(); ++i) {
-      Box box_i;
-      for (const Vec3d& p : moved[i]) box_i.add(p);
-      for (Index g : nearby) {
-        if (removed_[g]) continue;
-        const std::array<Vec3d, 3> other = corners(g, v, c);
-        Box box_g;
-        for (const Vec3d& p : other) box_g.add(p);
-        if (box_i.overlaps(box_g) && improper(moved[i], other)) return false;
+    for (Index g : nearby) {
+      if (g != last && meets_moved(moved, g, v, c)) {
+        last = g;
+        return false;
       }
     }
     move(v, c);
     return true;
+  }
+
+  static bool improper(const std::array<Vec3d, 3>& a, const std::array<Vec3d, 3>& b) {
+    return intersect_triangles(a[0], a[1], a[2], b[0], b[1], b[2]).improper();
+  }
+
+  // Whether face g (not around v) meets one of v's faces moved with v to c improperly.
+  bool meets_moved(const std::vector<std::array<Vec3d, 3>>& moved, Index g, Index v, const Vec3d& c) const {
+    if (removed_[g]) return false;
+    const std::array<Vec3d, 3> other = corners(g, v, c);
+    Box box_g;
+    for (const Vec3d& p : other) box_g.add(p);
+    return std::any_of(moved.begin(), moved.end(), [&](const std::array<Vec3d, 3>& m) {
+      Box box_m;
+      for (const Vec3d& p : m) box_m.add(p);
+      return box_m.overlaps(box_g) && improper(m, other);
+    });
   }
 
   void move(Index v, const Vec3d& c) {
@@ -415,6 +433,7 @@ class VertexPlacement {
   std::vector<std::uint8_t> on_grid_;
   std::vector<std::uint8_t> collapsed_;  ///< per vertex: collapsed away
   std::vector<std::uint8_t> removed_;    ///< per face: removed by a collapse
+  std::vector<Index> last_refusal_;      ///< per vertex: the face that refused its last candidate
   std::unordered_map<Vec3d, Index, PositionHash, PositionEqual> occupied_;
   std::vector<Box> vertex_reach_;
   std::vector<Box> face_reach_;
