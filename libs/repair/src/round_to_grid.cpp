@@ -374,12 +374,11 @@ class VertexPlacement {
   // Moves v to c if that keeps the surface valid, exactly; true if it did.
   bool try_position(Index v, const Vec3d& c, const std::vector<Index>& nearby) {
     if (auto it = occupied_.find(c); it != occupied_.end() && it->second != v) return false;
-    const std::span<const Index> around = faces_around(v);
-    std::vector<std::array<Vec3d, 3>> moved;
-    for (Index f : around) {
-      moved.push_back(corners(f, v, c));
-      const auto& m = moved.back();
+    MovedFaces moved;
+    for (Index f : faces_around(v)) {
+      const std::array<Vec3d, 3>& m = moved.corners.emplace_back(corners(f, v, c));
       if (collinear(m[0], m[1], m[2])) return false;
+      moved.boxes.push_back(box_of(m));
     }
     // The face that refused v's last candidate usually refuses the next one
     // too (a sheet closer than a grid step): asked first, it saves scanning
@@ -387,9 +386,9 @@ class VertexPlacement {
     Index& last = last_refusal_[v];
     if (last != kNoFace && std::find(nearby.begin(), nearby.end(), last) == nearby.end()) last = kNoFace;
     if (last != kNoFace && meets_moved(moved, last, v, c)) return false;
-    for (std::size_t i = 0; i < moved.size(); ++i)
-      for (std::size_t j = i + 1; j < moved.size(); ++j)
-        if (improper(moved[i], moved[j])) return false;
+    for (std::size_t i = 0; i < moved.corners.size(); ++i)
+      for (std::size_t j = i + 1; j < moved.corners.size(); ++j)
+        if (improper(moved.corners[i], moved.corners[j])) return false;
     for (Index g : nearby) {
       if (g != last && meets_moved(moved, g, v, c)) {
         last = g;
@@ -404,17 +403,26 @@ class VertexPlacement {
     return intersect_triangles(a[0], a[1], a[2], b[0], b[1], b[2]).improper();
   }
 
+  static Box box_of(const std::array<Vec3d, 3>& corners) {
+    Box box;
+    for (const Vec3d& p : corners) box.add(p);
+    return box;
+  }
+
+  // The faces around a vertex, moved with it, and their boxes.
+  struct MovedFaces {
+    std::vector<std::array<Vec3d, 3>> corners;
+    std::vector<Box> boxes;
+  };
+
   // Whether face g (not around v) meets one of v's faces moved with v to c improperly.
-  bool meets_moved(const std::vector<std::array<Vec3d, 3>>& moved, Index g, Index v, const Vec3d& c) const {
+  bool meets_moved(const MovedFaces& moved, Index g, Index v, const Vec3d& c) const {
     if (removed_[g]) return false;
     const std::array<Vec3d, 3> other = corners(g, v, c);
-    Box box_g;
-    for (const Vec3d& p : other) box_g.add(p);
-    return std::any_of(moved.begin(), moved.end(), [&](const std::array<Vec3d, 3>& m) {
-      Box box_m;
-      for (const Vec3d& p : m) box_m.add(p);
-      return box_m.overlaps(box_g) && improper(m, other);
-    });
+    const Box box_g = box_of(other);
+    for (std::size_t i = 0; i < moved.corners.size(); ++i)
+      if (moved.boxes[i].overlaps(box_g) && improper(moved.corners[i], other)) return true;
+    return false;
   }
 
   void move(Index v, const Vec3d& c) {
