@@ -22,6 +22,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <set>
 
 using namespace mr;
 
@@ -152,6 +153,40 @@ TEST_CASE("rounding refuses to place vertices it cannot keep apart", "[grid][rep
   REQUIRE_THROWS_AS(repair::round_to_grid(rounded, grid, no_search), RunError);
 }
 
+TEST_CASE("rounding gives up after the positions it may try, and a finer grid takes over", "[grid][repair]") {
+  // The two tetrahedra of the previous case, on 5 bits without a search.
+  TriangleSoup input;
+  input.positions = {{0.1, 0, 0},   {0.1, 1, 0},   {0.1, 0, 1},   {-0.9, 0, 0},
+                     {0.101, 0, 0}, {0.101, 1, 0}, {0.101, 0, 1}, {1.101, 0, 0}};
+  input.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {4, 5, 6}, {4, 7, 5}, {4, 6, 7}, {5, 7, 6}};
+  const Vec3d lo = Vec3d::Constant(-3.0), hi = Vec3d::Constant(3.0);
+  const CoordinateGrid coarse = CoordinateGrid::quantized_over(lo, hi, 5);
+  repair::GridRoundingOptions no_search;
+  no_search.max_steps = 0;
+  repair::GridRoundingOptions bounded = no_search;
+  bounded.max_tries = 5;  // fewer than the vertices
+  TriangleSoup rounded = input;
+  REQUIRE_THROWS_WITH(repair::round_to_grid(rounded, coarse, bounded),
+                      Catch::Contains("gave up") && Catch::Contains("5 tried positions"));
+
+  // Asked for a finer grid up front (to bound the search on the coarse
+  // one), then rounded onto it: 16 bits keep 1e-3 apart.
+  int asked = 0;
+  const repair::FinerGrid finer = [&](const CoordinateGrid& refused) -> std::optional<CoordinateGrid> {
+    ++asked;
+    if (refused.quantization().bits >= 16) return std::nullopt;
+    return CoordinateGrid::quantized_over(lo, hi, 16);
+  };
+  rounded = input;
+  const repair::GridRounding result = repair::round_to_grid_or_finer(rounded, coarse, finer, no_search);
+  REQUIRE(result.finer_grids == 1);
+  REQUIRE(result.grid.quantization().bits == 16);
+  REQUIRE(asked == 2);
+  REQUIRE(all_on(rounded, result.grid));
+  REQUIRE(result.stats.tries >= input.positions.size());
+  REQUIRE(check::check_surface(rounded).self_intersecting_pairs == 0);
+}
+
 TEST_CASE("a vertex no grid point works for is collapsed onto a placed neighbour", "[grid][repair]") {
   // Vertex v 1e-9 from its neighbour u: both round to one float32 point, and
   // with no search around the nearest point v has nowhere to go.
@@ -211,6 +246,48 @@ TEST_CASE("writers store positions exactly on the grid they announce", "[grid][i
         REQUIRE(read[i] == expected[i]);
       }
     }
+  }
+}
+
+TEST_CASE("a Draco file gives back exactly the values its grid holds, however many bits", "[grid][io]") {
+  // Draco's encoder quantizes in float: on fine grids it stores some of the
+  // values its decoder makes at a neighbouring level.
+  const io::Registry registry = io::make_default_registry();
+  test::TempDir dir("draco_bits");
+  const Vec3d lo(-0.3, 1.2, 5.0), hi(0.9, 1.7, 5.4);
+  for (int bits : {16, 22, 26, 30}) {
+    CAPTURE(bits);
+    const CoordinateGrid grid = CoordinateGrid::quantized_over(lo, hi, bits);
+    const auto& q = grid.quantization();
+    const float delta = q.range / static_cast<float>((std::int64_t{1} << bits) - 1);
+    std::mt19937 random(static_cast<unsigned>(bits));
+    std::uniform_int_distribution<std::int64_t> level(0, (std::int64_t{1} << bits) - 1);
+    TriangleSoup soup;  // disjoint triangles whose corners are decoder values
+    std::set<std::array<double, 3>> held, not_held;
+    for (Index v = 0; v < 600; ++v) {
+      Vec3d p;
+      for (int axis = 0; axis < 3; ++axis)
+        p[axis] = double(float(float(level(random)) * delta) + q.origin[static_cast<std::size_t>(axis)]);
+      soup.positions.push_back(p);
+      (grid.holds(p) ? held : not_held).insert({p.x(), p.y(), p.z()});
+      if (v % 3 == 2) soup.triangles.push_back({v - 2, v - 1, v});
+    }
+    io::WriteOptions options;
+    options.draco.position_grid = q;
+    options.draco.position_bits = bits;
+    io::write_surface(registry, soup, dir / "out.drc", options);
+    std::set<std::array<double, 3>> back;
+    for (const Vec3d& p : io::read_surface(registry, dir / "out.drc").positions)
+      back.insert({p.x(), p.y(), p.z()});
+    for (const auto& p : held) REQUIRE(back.count(p) == 1);
+    if (bits == 16) REQUIRE(not_held.empty());
+    if (bits == 22 || bits == 26) {
+      REQUIRE(!not_held.empty());
+      for (const auto& p : not_held) REQUIRE(back.count(p) == 0);
+    }
+    // At 30 bits float arithmetic collapses 64 levels onto one value, and
+    // the grid's nearest() misses some of them: it refuses those (safe).
+    if (bits == 30) REQUIRE(held.size() > 9 * not_held.size());
   }
 }
 

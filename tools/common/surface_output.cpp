@@ -20,16 +20,28 @@ int draco_position_bits_for(double extent, double epsilon) {
   return 30;
 }
 
+namespace {
+// Draco computes in float, whose significand has 24 bits: a finer grid has
+// more levels across the model than floats there, and most of its values
+// would not be stored as they are.
+constexpr int kMostFinerDracoBits = 24;
+}  // namespace
+
 std::optional<CoordinateGrid> finer_draco_grid(const io::Registry& registry, const std::string& path,
-                                               io::WriteOptions& options, const Vec3d& lo, const Vec3d& hi,
-                                               const CoordinateGrid& refused) {
-  if (refused.kind() != CoordinateGrid::Kind::quantized || refused.quantization().bits >= 30)
+                                               const io::WriteOptions& options, const Vec3d& lo,
+                                               const Vec3d& hi, const CoordinateGrid& refused) {
+  if (refused.kind() != CoordinateGrid::Kind::quantized || refused.quantization().bits >= kMostFinerDracoBits)
     return std::nullopt;
-  options.draco.position_bits = std::min(30, refused.quantization().bits + 2);
-  options.draco.position_grid.reset();
-  const CoordinateGrid grid = io::surface_position_grid(registry, path, options, lo, hi);
+  io::WriteOptions finer = options;
+  finer.draco.position_bits = std::min(kMostFinerDracoBits, refused.quantization().bits + 2);
+  finer.draco.position_grid.reset();
+  return io::surface_position_grid(registry, path, finer, lo, hi);
+}
+
+void write_on_grid(io::WriteOptions& options, const CoordinateGrid& grid) {
+  if (grid.kind() != CoordinateGrid::Kind::quantized) return;
+  options.draco.position_bits = grid.quantization().bits;
   options.draco.position_grid = grid.quantization();
-  return grid;
 }
 
 void require_grid_holds(const CoordinateGrid& grid, const std::string& path, const Eigen::AlignedBox3d& box,
@@ -57,13 +69,13 @@ SurfaceWrite write_watertight_surface(const io::Registry& registry, TriangleSoup
   result.watertight = true;
   const Eigen::AlignedBox3d box = bounding_box(surface);
   const CoordinateGrid grid = io::surface_position_grid(registry, path, options, box.min(), box.max());
-  if (grid.kind() == CoordinateGrid::Kind::quantized) options.draco.position_grid = grid.quantization();
   repair::FinerGrid finer;
   if (finer_draco_grid)
     finer = [&](const CoordinateGrid& refused) {
       return tools::finer_draco_grid(registry, path, options, box.min(), box.max(), refused);
     };
   const repair::GridRounding rounded = repair::round_to_grid_or_finer(surface, grid, finer);
+  write_on_grid(options, rounded.grid);
   result.rounding = rounded.stats;
   io::write_surface(registry, dress ? dress(surface, rounded.grid) : surface, path, options,
                     check::watertight_file_check(registry, path, &result.written));

@@ -16,12 +16,15 @@ namespace mr::tools {
 /// far less than epsilon.
 int draco_position_bits_for(double extent, double epsilon);
 
-/// The Draco grid of two more bits (up to 30) than `refused`, for writing
-/// positions inside [lo, hi] to `path`; `options` are set to write on it.
-/// Nothing when `refused` is not a Draco grid or has 30 bits.
+/// The Draco grid of two more bits (up to 24) than `refused`, for writing
+/// positions inside [lo, hi] to `path` with `options`. Nothing when
+/// `refused` is not a Draco grid or has 24 bits or more.
 std::optional<CoordinateGrid> finer_draco_grid(const io::Registry& registry, const std::string& path,
-                                               io::WriteOptions& options, const Vec3d& lo, const Vec3d& hi,
-                                               const CoordinateGrid& refused);
+                                               const io::WriteOptions& options, const Vec3d& lo,
+                                               const Vec3d& hi, const CoordinateGrid& refused);
+
+/// Sets `options` to write positions on `grid` (a Draco grid; others need nothing).
+void write_on_grid(io::WriteOptions& options, const CoordinateGrid& grid);
 
 /// Throws mr::UsageError naming `path` when `grid` stores positions more
 /// than `epsilon` apart somewhere in `box`: the file cannot hold a surface
@@ -46,7 +49,7 @@ struct SurfaceWrite {
 /// surface's bounding-box diagonal where it lies, unless it is a Draco grid
 /// of bits the user chose: finer_draco_grid false); any other
 /// surface (open, pinched, inward) is written as it is. Where no place on a Draco grid is
-/// left for some vertex, the grid gets two more bits (up to 30) unless
+/// left for some vertex, the grid gets two more bits (up to 24) unless
 /// `finer_draco_grid` is false (the user chose the bits).
 SurfaceWrite write_surface_keeping_watertight(const io::Registry& registry, TriangleSoup surface,
                                               const std::string& path, io::WriteOptions options,

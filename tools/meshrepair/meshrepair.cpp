@@ -127,7 +127,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 // The grid the output file stores positions on, for a surface inside [lo, hi];
-// Draco's quantization is fixed here, and the writer is told to use it.
+// Draco's bits are chosen here (the writer is told the grid the surface was
+// rounded onto afterwards: write_on_grid).
 std::function<CoordinateGrid(const Vec3d&, const Vec3d&)> output_grid(const io::Registry& registry,
                                                                       const std::string& path, double epsilon,
                                                                       const ToolOptions& options,
@@ -135,17 +136,15 @@ std::function<CoordinateGrid(const Vec3d&, const Vec3d&)> output_grid(const io::
   return [&registry, path, epsilon, &options, &write](const Vec3d& lo, const Vec3d& hi) {
     write.draco.position_bits =
         options.draco_position_bits.value_or(draco_position_bits_for((hi - lo).maxCoeff(), epsilon));
-    CoordinateGrid grid = io::surface_position_grid(registry, path, write, lo, hi);
-    if (grid.kind() == CoordinateGrid::Kind::quantized) write.draco.position_grid = grid.quantization();
-    return grid;
+    return io::surface_position_grid(registry, path, write, lo, hi);
   };
 }
 
 // Two more Draco bits when no place on the grid is left for some vertex, if
-// meshrepair chose the bits (not --draco-position-bits), up to 30.
+// meshrepair chose the bits (not --draco-position-bits), up to 24.
 std::function<std::optional<CoordinateGrid>(const Vec3d&, const Vec3d&, const CoordinateGrid&)>
 finer_output_grid(const io::Registry& registry, const std::string& path, const ToolOptions& options,
-                  io::WriteOptions& write) {
+                  const io::WriteOptions& write) {
   return [&registry, path, &options, &write](const Vec3d& lo, const Vec3d& hi,
                                              const CoordinateGrid& refused) -> std::optional<CoordinateGrid> {
     if (options.draco_position_bits) return std::nullopt;
@@ -295,6 +294,7 @@ void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
   repair_options.finer_output_grid = finer_output_grid(registry, files[1], options, write_options);
   const repair::RepairResult repaired =
       repair::repair_surface_from_tets(pipeline.mesh, inside_labels(pipeline), input, repair_options);
+  write_on_grid(write_options, repaired.grid);
   if (options.verbose && !options.quiet) {
     for (const repair::StageTime& stage : repaired.stages)
       err << "meshrepair: end " << stage.name << " (" << stage.seconds << " s)\n";

@@ -86,6 +86,7 @@ nlohmann::json repair_figures(const repair::RepairResult& r) {
           {"rounding_collapsed", r.rounding.collapsed},
           {"finer_output_grids", r.finer_grids},
           {"rounding_passes", r.rounding.passes},
+          {"rounding_tries", r.rounding.tries},
           {"rounding_max_move", r.rounding.max_move}};
 }
 

@@ -68,6 +68,8 @@ CoordinateGrid::CoordinateGrid(Kind kind, const Quantization& quantization)
   max_level_ = (std::int64_t{1} << quantization_.bits) - 1;
   // As Draco's Dequantizer::Init: the division in float.
   delta_ = quantization_.range / static_cast<float>(max_level_);
+  // As Draco's Quantizer::Init.
+  inverse_delta_ = static_cast<float>(max_level_) / quantization_.range;
 }
 
 CoordinateGrid CoordinateGrid::quantized(const Quantization& quantization) {
@@ -116,24 +118,51 @@ double CoordinateGrid::dequantize(int axis, std::int64_t q) const {
   return static_cast<double>(value);
 }
 
-// The level whose value is nearest to x (the lower one on ties).
+// The level Draco's encoder stores the float nearest to x at: as its
+// AttributeQuantizationTransform, the difference to the origin and the
+// scaling each in float.
+std::int64_t CoordinateGrid::encoded_level(int axis, double x) const {
+  const float value = static_cast<float>(x) - quantization_.origin[static_cast<std::size_t>(axis)];
+  return static_cast<std::int64_t>(std::floor(value * inverse_delta_ + 0.5f));
+}
+
+// Whether a file on this grid gives x back: x is a float the encoder stores
+// at a level that the decoder turns into x again.
+bool CoordinateGrid::stored_as_is(int axis, double x) const {
+  if (static_cast<double>(static_cast<float>(x)) != x) return false;
+  const std::int64_t q = encoded_level(axis, x);
+  return q >= 0 && q <= max_level_ && dequantize(axis, q) == x;
+}
+
+// The level whose value is nearest to x, among those a file stores as they
+// are if any is near.
 std::int64_t CoordinateGrid::nearest_level(int axis, double x) const {
   const double origin = quantization_.origin[static_cast<std::size_t>(axis)];
   const double guess = std::round((x - origin) / static_cast<double>(delta_));
-  const auto clamp = [&](double q) {
-    return static_cast<std::int64_t>(std::clamp(q, 0.0, double(max_level_)));
-  };
-  std::int64_t best = clamp(guess);
-  double best_distance = std::abs(dequantize(axis, best) - x);
-  // The float arithmetic can put the nearest value one level off the guess.
-  for (std::int64_t q = std::max<std::int64_t>(best - 2, 0); q <= std::min(best + 2, max_level_); ++q) {
-    const double distance = std::abs(dequantize(axis, q) - x);
-    if (distance < best_distance) {
+  const std::int64_t centre = static_cast<std::int64_t>(std::clamp(guess, 0.0, double(max_level_)));
+  // The float arithmetic can put the nearest value a level off the guess.
+  std::int64_t best = centre;
+  double best_distance = std::abs(dequantize(axis, centre) - x);
+  bool best_stored = stored_as_is(axis, dequantize(axis, centre));
+  for (std::int64_t q = std::max<std::int64_t>(centre - 2, 0); q <= std::min(centre + 2, max_level_); ++q) {
+    const double value = dequantize(axis, q);
+    const double distance = std::abs(value - x);
+    const bool stored = stored_as_is(axis, value);
+    if ((stored && !best_stored) || (stored == best_stored && distance < best_distance)) {
       best = q;
       best_distance = distance;
+      best_stored = stored;
     }
   }
   return best;
+}
+
+bool CoordinateGrid::holds(const Vec3d& p) const {
+  if (nearest(p) != p) return false;
+  if (kind_ != Kind::quantized) return true;
+  for (int axis = 0; axis < 3; ++axis)
+    if (!stored_as_is(axis, p[axis])) return false;
+  return true;
 }
 
 double CoordinateGrid::nearest(int axis, double x) const {

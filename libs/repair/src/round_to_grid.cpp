@@ -101,6 +101,7 @@ class VertexPlacement {
       if (!changed) break;
       left = unplaced();
     }
+    stats.tries = tries_;
     if (stats.collapsed > 0) remove_collapsed();
     if (!left.empty())
       throw RunError("cannot place " + std::to_string(left.size()) + " vertices on the " + grid_.name() +
@@ -142,7 +143,9 @@ class VertexPlacement {
     bool any = false;
     for (Index w : neighbours(v)) {
       if (!on_grid_[w] || grid_.holds(original_[w]) || collapsed_[w]) continue;
-      if (try_position(w, original_[w], faces_near(w))) {
+      const std::vector<Index> nearby = faces_near(w);
+      forget_refusal_unless_near(w, nearby);
+      if (try_position(w, original_[w], nearby)) {
         on_grid_[w] = 0;
         any = true;
       }
@@ -307,11 +310,14 @@ class VertexPlacement {
   // vertex that must move past a near sheet or a sliver finds a place.
   void place(Index v, bool search, GridRoundingStats& stats) {
     const std::vector<Index> nearby = faces_near(v);
+    forget_refusal_unless_near(v, nearby);
+    // Not a value the file would store at another level (a fine Draco grid).
+    const auto try_grid_point = [&](const Vec3d& c) { return grid_.holds(c) && try_position(v, c, nearby); };
     const Vec3d nearest = grid_.nearest(original_[v]);
-    bool placed = try_position(v, nearest, nearby);
+    bool placed = try_grid_point(nearest);
     for (int stride = 1; !placed && search && stride <= options_.max_stride; stride *= 4) {
       for (const Vec3d& c : ring_candidates(v, nearest, stride))
-        if ((placed = try_position(v, c, nearby))) break;
+        if ((placed = try_grid_point(c))) break;
       if (placed) ++stats.nearest_refused;
     }
     if (placed) stats.max_move = std::max(stats.max_move, (surface_.positions[v] - original_[v]).norm());
@@ -371,8 +377,17 @@ class VertexPlacement {
     return c;
   }
 
+  // The face that refused v last is asked first only while it is near v
+  // (a collapse since may have moved v's faces elsewhere).
+  void forget_refusal_unless_near(Index v, const std::vector<Index>& nearby) {
+    Index& last = last_refusal_[v];
+    if (last != kNoFace && std::find(nearby.begin(), nearby.end(), last) == nearby.end()) last = kNoFace;
+  }
+
   // Moves v to c if that keeps the surface valid, exactly; true if it did.
+  // Precondition: v's last refusal is kNoFace or among `nearby`.
   bool try_position(Index v, const Vec3d& c, const std::vector<Index>& nearby) {
+    count_try();
     if (auto it = occupied_.find(c); it != occupied_.end() && it->second != v) return false;
     MovedFaces moved;
     for (Index f : faces_around(v)) {
@@ -384,7 +399,6 @@ class VertexPlacement {
     // too (a sheet closer than a grid step): asked first, it saves scanning
     // every face near v with exact tests that coplanar sheets make slow.
     Index& last = last_refusal_[v];
-    if (last != kNoFace && std::find(nearby.begin(), nearby.end(), last) == nearby.end()) last = kNoFace;
     if (last != kNoFace && meets_moved(moved, last, v, c)) return false;
     for (std::size_t i = 0; i < moved.corners.size(); ++i)
       for (std::size_t j = i + 1; j < moved.corners.size(); ++j)
@@ -397,6 +411,12 @@ class VertexPlacement {
     }
     move(v, c);
     return true;
+  }
+
+  void count_try() {
+    if (++tries_ <= options_.max_tries || options_.max_tries == 0) return;
+    throw RunError("gave up placing the vertices on the " + grid_.name() + " grid of the output after " +
+                   std::to_string(options_.max_tries) + " tried positions");
   }
 
   static bool improper(const std::array<Vec3d, 3>& a, const std::array<Vec3d, 3>& b) {
@@ -442,11 +462,17 @@ class VertexPlacement {
   std::vector<std::uint8_t> collapsed_;  ///< per vertex: collapsed away
   std::vector<std::uint8_t> removed_;    ///< per face: removed by a collapse
   std::vector<Index> last_refusal_;      ///< per vertex: the face that refused its last candidate
+  std::size_t tries_ = 0;                ///< positions tried so far
   std::unordered_map<Vec3d, Index, PositionHash, PositionEqual> occupied_;
   std::vector<Box> vertex_reach_;
   std::vector<Box> face_reach_;
   spatial::BoxGrid faces_;
 };
+
+// The search on a grid that is not the only one: a few positions per
+// vertex and about one full search (GridRoundingOptions' defaults) besides.
+constexpr std::size_t kTriesPerVertex = 4;
+constexpr std::size_t kTriesPerGrid = 20000;
 
 }  // namespace
 
@@ -471,12 +497,15 @@ GridRounding round_to_grid_or_finer(TriangleSoup& surface, const CoordinateGrid&
   GridRounding result{grid, {}, 0};
   const TriangleSoup unrounded = surface;
   while (true) {
+    std::optional<CoordinateGrid> next;
+    if (finer) next = finer(result.grid);
+    GridRoundingOptions attempt = options;
+    if ((next || result.finer_grids > 0) && attempt.max_tries == 0)
+      attempt.max_tries = kTriesPerVertex * surface.positions.size() + kTriesPerGrid;
     try {
-      result.stats = round_to_grid(surface, result.grid, options);
+      result.stats = round_to_grid(surface, result.grid, attempt);
       return result;
     } catch (const RunError&) {
-      std::optional<CoordinateGrid> next;
-      if (finer) next = finer(result.grid);
       if (!next) throw;
       surface = unrounded;
       result.grid = *next;

@@ -56,8 +56,10 @@ class CoordinateGrid {
   /// The grid value `steps` steps away from the grid value g on `axis`
   /// (negative: down); clamped at the ends of a quantized grid.
   double step(int axis, double g, int steps) const;
-  /// True if p is on the grid.
-  bool holds(const Vec3d& p) const { return nearest(p) == p; }
+  /// True if p is on the grid and a file on it stores p as it is. (Draco's
+  /// encoder quantizes in float arithmetic too: past about 20 bits it
+  /// stores some grid values at a neighbouring level.)
+  bool holds(const Vec3d& p) const;
   /// The largest distance between neighbouring grid values on any axis
   /// within the box [lo, hi] (found at its corners, where coordinates are
   /// largest): how far rounding may move a vertex there, doubled.
@@ -66,11 +68,14 @@ class CoordinateGrid {
  private:
   CoordinateGrid(Kind kind, const Quantization& quantization);
   double dequantize(int axis, std::int64_t q) const;
+  std::int64_t encoded_level(int axis, double x) const;
+  bool stored_as_is(int axis, double x) const;
   std::int64_t nearest_level(int axis, double x) const;
 
   Kind kind_;
   Quantization quantization_;
-  float delta_ = 0.0f;  ///< quantized: the step, in float as Draco computes it
+  float delta_ = 0.0f;          ///< quantized: the step, in float as Draco computes it
+  float inverse_delta_ = 0.0f;  ///< quantized: levels per unit, in float as Draco's encoder computes it
   std::int64_t max_level_ = 0;
 };
 

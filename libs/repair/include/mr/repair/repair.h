@@ -52,7 +52,8 @@ struct RepairOptions {
   std::function<CoordinateGrid(const Vec3d& lo, const Vec3d& hi)> output_grid;
   /// When no place on the output grid is left for some vertex, a finer grid
   /// for the same box to round onto instead (more Draco bits), or nothing
-  /// (the repair then fails). Empty: nothing.
+  /// (the repair then fails). Empty: nothing. Asked before rounding onto
+  /// `refused` too (round_to_grid_or_finer), so it must only compute.
   std::function<std::optional<CoordinateGrid>(const Vec3d& lo, const Vec3d& hi,
                                               const CoordinateGrid& refused)>
       finer_output_grid;

@@ -29,6 +29,11 @@ struct GridRoundingOptions {
   /// Sweeps over the vertices not yet placed (a refused vertex may fit once
   /// its neighbours have moved).
   int max_passes = 8;
+  /// Positions tried over the whole run before giving up (0: no limit).
+  /// round_to_grid_or_finer sets it on every grid when there is more than
+  /// one: where sheets lie closer than a grid step, searching far on a grid
+  /// costs more than rounding onto a finer one (or giving up).
+  std::size_t max_tries = 0;
 };
 
 struct GridRoundingStats {
@@ -37,6 +42,7 @@ struct GridRoundingStats {
   std::size_t nearest_refused = 0;  ///< vertices placed on a grid point other than the nearest
   std::size_t collapsed = 0;        ///< vertices no grid point worked for, collapsed onto a neighbour
   int passes = 0;
+  std::size_t tries = 0;  ///< positions tried (each decided exactly against the faces near it)
   double max_move = 0.0;  ///< largest distance a vertex moved
 };
 
@@ -51,12 +57,15 @@ struct GridRoundingStats {
 /// holds and no face becomes degenerate or meets another improperly (its
 /// faces on that edge go; the surface is compacted, attributes follow).
 /// Vertices are placed in index order, so the result is deterministic.
-/// Throws mr::RunError naming the count of vertices that found no place.
+/// Throws mr::RunError naming the count of vertices that found no place, or
+/// when the positions tried exceed options.max_tries.
 GridRoundingStats round_to_grid(TriangleSoup& surface, const CoordinateGrid& grid,
                                 const GridRoundingOptions& options = {});
 
 /// A finer grid to round onto when `refused` left some vertex no place
-/// (more Draco bits), or nothing.
+/// (more Draco bits), or nothing. Asked before rounding onto `refused` (to
+/// know whether to bound the search there), so it only computes: whoever
+/// writes the file takes the grid from GridRounding::grid.
 using FinerGrid = std::function<std::optional<CoordinateGrid>(const CoordinateGrid& refused)>;
 
 struct GridRounding {
@@ -67,7 +76,8 @@ struct GridRounding {
 
 /// round_to_grid onto `grid`, and while it throws, onto the grid `finer`
 /// gives instead (the surface restored first); rethrows when `finer` (or
-/// an empty `finer`) gives nothing.
+/// an empty `finer`) gives nothing. Unless `grid` is the only one, the
+/// search on each is bounded (max_tries, unless options set it).
 GridRounding round_to_grid_or_finer(TriangleSoup& surface, const CoordinateGrid& grid, const FinerGrid& finer,
                                     const GridRoundingOptions& options = {});
 
