@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <queue>
 
 namespace mr::simplify {
@@ -87,6 +88,22 @@ std::vector<Candidate> pop_batch(const TriMesh& mesh, CollapseQueue& queue, std:
   return batch;
 }
 
+// The box of v0 and its one-ring: where a collapse of v0 changes faces.
+Eigen::AlignedBox3d collapse_region(const TriMesh& mesh, TriMesh::HalfedgeHandle h) {
+  const auto at = [&](TriMesh::VertexHandle v) {
+    const auto& p = mesh.point(v);
+    return Vec3d(p[0], p[1], p[2]);
+  };
+  const auto v0 = mesh.from_vertex_handle(h);
+  Eigen::AlignedBox3d box(at(v0));
+  for (auto v : mesh.vv_range(v0)) box.extend(at(v));
+  return box;
+}
+
+bool meets_any(const std::vector<Eigen::AlignedBox3d>& boxes, const Eigen::AlignedBox3d& box) {
+  return std::any_of(boxes.begin(), boxes.end(), [&](const auto& b) { return b.intersects(box); });
+}
+
 void requeue_around(const TriMesh& mesh, CollapseQueue& queue,
                     const std::vector<TriMesh::VertexHandle>& support, TriMesh::VertexHandle v1) {
   for (auto s : support)
@@ -103,18 +120,28 @@ std::size_t collapse_edges(MeshState& state, std::size_t target_faces) {
   std::vector<std::uint32_t> marks(mesh.n_vertices(), 0);
   std::size_t collapses = 0;
   std::vector<TriMesh::VertexHandle> support;
+  std::vector<Eigen::AlignedBox3d> changed;  // regions of the batch's collapses so far
   for (std::uint32_t batch_id = 1; state.face_count() > target_faces; ++batch_id) {
     const std::vector<Candidate> batch = pop_batch(mesh, queue, marks, batch_id);
     if (batch.empty()) break;
-    std::vector<std::uint8_t> passed(batch.size(), 0);
+    // Every check on the surface before the batch, in parallel; the regions
+    // are disjoint, so only whether new faces cross others can change, and
+    // only near a collapse made before in the batch: asked again there.
+    std::vector<std::uint8_t> local(batch.size(), 0), apart(batch.size(), 0);
     tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t i) {
-      passed[i] = state.collapse_passes_local_checks(TriMesh::HalfedgeHandle(int(batch[i].halfedge)));
+      const TriMesh::HalfedgeHandle h(static_cast<int>(batch[i].halfedge));
+      local[i] = state.collapse_passes_local_checks(h);
+      apart[i] = local[i] && state.collapse_keeps_faces_apart(h);
     });
+    changed.clear();
     for (std::size_t i = 0; i < batch.size() && state.face_count() > target_faces; ++i) {
       const TriMesh::HalfedgeHandle h(static_cast<int>(batch[i].halfedge));
-      if (!passed[i] || !mesh.is_collapse_ok(h) || !state.collapse_keeps_faces_apart(h) ||
-          !state.collapse_keeps_volume(h))
-        continue;
+      if (!local[i] || !mesh.is_collapse_ok(h)) continue;
+      const Eigen::AlignedBox3d region = collapse_region(mesh, h);
+      const bool keeps_apart =
+          meets_any(changed, region) ? state.collapse_keeps_faces_apart(h) : apart[i] != 0;
+      if (!keeps_apart || !state.collapse_keeps_volume(h)) continue;
+      changed.push_back(region);
       const auto v0 = mesh.from_vertex_handle(h);
       const auto v1 = mesh.to_vertex_handle(h);
       support.clear();

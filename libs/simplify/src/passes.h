@@ -8,9 +8,11 @@ namespace mr::simplify {
 /// Greedy edge collapses, cheapest first, until `target_faces` is reached or
 /// no candidate passes its checks. Returns the number of collapses.
 /// Candidates are popped in batches whose one-rings do not overlap; their
-/// local checks (envelope included) run in parallel, then the batch is
-/// applied in cost order with the self-intersection test, serially. The
-/// result does not depend on the number of threads.
+/// checks (envelope and self-intersection included) run in parallel on the
+/// surface before the batch, then the batch is applied in cost order,
+/// serially, asking the self-intersection test again for a collapse whose
+/// one-ring's box meets one of a collapse made before it in the batch. The
+/// result is the serial one, whatever the number of threads.
 std::size_t collapse_edges(MeshState& state, std::size_t target_faces);
 
 /// Up to `passes` sweeps of angle-improving edge flips over all edges, in
