@@ -145,6 +145,7 @@ std::int64_t CoordinateGrid::nearest_level(int axis, double x) const {
   double best_distance = std::abs(dequantize(axis, centre) - x);
   bool best_stored = stored_as_is(axis, dequantize(axis, centre));
   for (std::int64_t q = std::max<std::int64_t>(centre - 2, 0); q <= std::min(centre + 2, max_level_); ++q) {
+    if (q == centre) continue;
     const double value = dequantize(axis, q);
     const double distance = std::abs(value - x);
     const bool stored = stored_as_is(axis, value);

@@ -89,14 +89,11 @@ std::vector<Candidate> pop_batch(const TriMesh& mesh, CollapseQueue& queue, std:
 }
 
 // The box of v0 and its one-ring: where a collapse of v0 changes faces.
-Eigen::AlignedBox3d collapse_region(const TriMesh& mesh, TriMesh::HalfedgeHandle h) {
-  const auto at = [&](TriMesh::VertexHandle v) {
-    const auto& p = mesh.point(v);
-    return Vec3d(p[0], p[1], p[2]);
-  };
+Eigen::AlignedBox3d collapse_region(const MeshState& state, TriMesh::HalfedgeHandle h) {
+  const TriMesh& mesh = state.mesh();
   const auto v0 = mesh.from_vertex_handle(h);
-  Eigen::AlignedBox3d box(at(v0));
-  for (auto v : mesh.vv_range(v0)) box.extend(at(v));
+  Eigen::AlignedBox3d box(state.point(v0));
+  for (auto v : mesh.vv_range(v0)) box.extend(state.point(v));
   return box;
 }
 
@@ -137,7 +134,7 @@ std::size_t collapse_edges(MeshState& state, std::size_t target_faces) {
     for (std::size_t i = 0; i < batch.size() && state.face_count() > target_faces; ++i) {
       const TriMesh::HalfedgeHandle h(static_cast<int>(batch[i].halfedge));
       if (!local[i] || !mesh.is_collapse_ok(h)) continue;
-      const Eigen::AlignedBox3d region = collapse_region(mesh, h);
+      const Eigen::AlignedBox3d region = collapse_region(state, h);
       const bool keeps_apart =
           meets_any(changed, region) ? state.collapse_keeps_faces_apart(h) : apart[i] != 0;
       if (!keeps_apart || !state.collapse_keeps_volume(h)) continue;

@@ -43,6 +43,7 @@ class MeshState {
             std::span<const std::uint8_t> frozen_faces = {});
 
   TriMesh& mesh() { return mesh_; }
+  Vec3d point(TriMesh::VertexHandle v) const;
   const TriMesh& mesh() const { return mesh_; }
   std::size_t kept_aside_faces() const { return kept_aside_.size(); }
   std::size_t duplicate_faces() const { return duplicate_faces_; }
@@ -98,7 +99,6 @@ class MeshState {
     Vec3d old_normal;  // of the face it replaces (zero if none or degenerate)
   };
 
-  Vec3d point(TriMesh::VertexHandle v) const;
   Corners corners(TriMesh::FaceHandle f) const;
   void build_mesh(const TriangleSoup& welded);
   void lock_vertices(const TriangleSoup& welded, std::span<const std::uint8_t> frozen_faces);
