@@ -19,6 +19,7 @@
 #include <memory>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 using namespace mr;
 
@@ -218,6 +219,54 @@ TEST_CASE("meshio loads the .vtu we write", "[gmsh]") {
     CHECK(connectivity == connectivity_sum);
     CHECK(coordinate_sum == Approx(grid_coordinate_sum).epsilon(1e-12));
     CHECK(labels == label_sum);
+  }
+}
+
+TEST_CASE("node data (sizing fields) goes both ways between us, meshio and gmsh", "[gmsh][sizing]") {
+  // A user makes a sizing field in Python: meshio writes it, we read it;
+  // and meshio and gmsh read the node data we write.
+  const std::string python = python_with_meshio();
+  INFO("no python3 with meshio found: install python3-meshio (see the setup script)");
+  REQUIRE(!python.empty());
+  require_gmsh();
+  test::TempDir dir("node_data_interop");
+  const io::Registry registry = io::make_default_registry();
+  TetMesh grid = test::tet_io::kuhn_grid(2);
+  std::vector<double> values;
+  for (const Vec3d& p : grid.positions) values.push_back(0.25 + p.x() + 2 * p.y());
+  grid.node_fields["values"] = values;
+  for (const auto& [format, binary, version] : {std::tuple{"gmsh", false, "4.1"},
+                                                {"gmsh", true, "4.1"},
+                                                {"gmsh22", false, "2.2"},
+                                                {"gmsh22", true, "2.2"}}) {
+    CAPTURE(format, binary);
+    const std::string tag = std::string(format) + (binary ? "b" : "a");
+    const std::filesystem::path ours = dir / (tag + "_ours.msh"), theirs = dir / (tag + "_meshio.msh");
+    io::WriteOptions options;
+    options.binary = binary;
+    options.msh_version = version;
+    io::write_volume(registry, grid, ours, options);
+    const CommandResult result =
+        run(python +
+            " -c 'import sys, meshio; m = meshio.read(sys.argv[1]); "
+            "print(repr(float(m.point_data[\"values\"].sum()))); "
+            "import numpy; tets = numpy.concatenate([c.data for c in m.cells if c.type == \"tetra\"]); "
+            "fresh = meshio.Mesh(m.points, [(\"tetra\", tets)], point_data={\"values\": "
+            "m.point_data[\"values\"]}); "
+            "meshio.write(sys.argv[2], fresh, file_format=sys.argv[3], binary=sys.argv[4] == \"1\")' " +
+            quote(ours) + " " + quote(theirs) + " " + format + " " + (binary ? "1" : "0"));
+    INFO(result.output);
+    REQUIRE(result.status == 0);
+    double sum = 0, expected = 0;
+    std::istringstream(result.output) >> sum;
+    for (const double v : values) expected += v;
+    CHECK(sum == Approx(expected).epsilon(1e-12));
+    const TetMesh back = io::read_volume(registry, theirs);
+    REQUIRE(back.positions.size() == grid.positions.size());
+    CHECK(back.node_fields.at("values") == values);
+    const CommandResult loaded = gmsh(quote(ours) + " -0 -o " + quote(dir / (tag + "_gmsh.msh")));
+    INFO(loaded.output);
+    CHECK(loaded.status == 0);
   }
 }
 

@@ -8,6 +8,7 @@
 #include <mr/core/errors.h>
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
+#include <mr/tetmesh/sizing_field.h>
 #include <mr/tetmesh/tetrahedralize.h>
 
 #include <nlohmann/json.hpp>
@@ -22,6 +23,7 @@ struct ToolOptions {
   io::WriteOptions write;
   std::string stats_path;
   std::string surface_path;
+  std::string sizing_path;
   std::size_t max_memory = cli::default_max_memory();
   bool quiet = false;
   bool verbose = false;
@@ -81,6 +83,11 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        [&](const std::string& v) { t.snap_fraction = parse_double("--snap", v); }},
       {"--skip-simplify", "", "", "insert the input as it is, without simplifying it first",
        [&](const std::string&) { t.skip_simplify = true; }},
+      {"--sizing", "", "FILE",
+       "target edge length varying in space, absolute: a tet mesh (.msh) with a value per node ($NodeData "
+       "\"values\", fTetWild's --bg-mesh) interpolated linearly, or a float grid (.vdb, the grid \"sizing\" "
+       "or the first) sampled trilinearly; where it gives no value, -l holds; clamped to [l/100, 100 l]",
+       [&](const std::string& v) { o.sizing_path = v; }},
       {"--surface", "", "FILE", "also write the tracked surface (the input as embedded)",
        [&](const std::string& v) { o.surface_path = v; }},
       {"--msh-version", "", "V", "MSH version to write: 4.1 (default) or 2.2",
@@ -124,6 +131,16 @@ nlohmann::json make_stats(const TriangleSoup& input, const tetmesh::PipelineResu
   return stats;
 }
 
+// A sizing field from a tet mesh with node values, or from a format that
+// stores a field (a .vdb float grid).
+std::shared_ptr<const ScalarField> read_sizing_field(const io::Registry& registry, const std::string& path) {
+  const io::Format& format = registry.resolve_for_read(path, "");
+  if (format.read_field) return format.read_field(path);
+  if (format.read_volume) return tetmesh::sizing_from_tet_mesh(format.read_volume(path, {}), path);
+  throw InputError(path, "a sizing field is a tet mesh with node values (.msh) or a float grid (.vdb), not " +
+                             format.description);
+}
+
 }  // namespace
 
 int tetrahedralize(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -138,6 +155,10 @@ int tetrahedralize(const std::vector<std::string>& args, std::ostream& out, std:
     const TriangleSoup input = io::read_surface(registry, files[0]);
     check_faces_fit(files[0], input.num_triangles(), kPipelineBytesPerFace, options.max_memory);
     check_has_area(files[0], input);
+    if (!options.sizing_path.empty()) {
+      check_file_fits(options.sizing_path, options.max_memory);
+      options.pipeline.sizing = read_sizing_field(registry, options.sizing_path);
+    }
     tetmesh::Logger logger;
     if (!options.quiet) {
       logger.on_message = [&](tetmesh::LogLevel level, std::string_view text) {

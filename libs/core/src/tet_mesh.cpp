@@ -23,6 +23,8 @@ std::string find_tet_mesh_inconsistency(const TetMesh& mesh) {
     return "tet labels do not match the number of tets";
   if (!mesh.face_labels.empty() && mesh.face_labels.size() != mesh.faces.size())
     return "triangle labels do not match the number of triangles";
+  for (const auto& [name, values] : mesh.node_fields)
+    if (values.size() != n) return "node field '" + name + "' does not have one value per node";
   return {};
 }
 

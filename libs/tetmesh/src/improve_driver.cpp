@@ -115,6 +115,18 @@ std::string pass_summary(int pass, const ImproveStats& s, const EnergyState& sta
   return text.str();
 }
 
+// With a sizing field, the mesh may be far from its lengths while its
+// energy is already low: passes go on until one changes the number of tets
+// by at most this share (fTetWild's criterion after applying its field;
+// splits and collapses keep trading places at the ends of the length
+// window, so their count does not settle).
+constexpr double kSettledShare = 0.02;
+
+bool sizing_settled(const ImproveOptions& options, std::size_t tets_before, std::size_t tets_after) {
+  const double change = std::abs(double(tets_after) - double(tets_before));
+  return options.sizing == nullptr || change <= kSettledShare * double(tets_before);
+}
+
 void run_pass(Workspace& ws, ImproveStats& stats) {
   const std::size_t splits = split_pass(ws);
   check_in_debug(ws.mesh, "improve: split");
@@ -134,7 +146,8 @@ void run_pass(Workspace& ws, ImproveStats& stats) {
   stats.smoothing_moves += moves;
 }
 
-// Passes until the largest energy is below the stop energy. When a pass
+// Passes until the largest energy is below the stop energy (and, with a
+// sizing field, the lengths settled). When a pass
 // stalls, the local target shrinks around the bad tets (never two passes in
 // a row, so that the splits it causes can settle); once it reached its floor
 // and kPatience passes brought nothing, improvement ends.
@@ -147,10 +160,15 @@ ImproveStats run_passes(Mesh& mesh, const SurfaceBounds& bounds, const ImproveOp
   ws.triangles = bounds.triangles;
   ws.payload = std::move(payload);
   ws.release_junctions = options.release_junctions;
+  ws.use_sizing_field(options.sizing);
+  if (options.sizing != nullptr) ws.collapse_below = 2.0 / 3.0;
   std::vector<EnergyState> history{energy_state(ws, tet_energies(ws, true))};
-  bool just_resized = false, hit_floor = false;
-  for (int pass = 0; pass < options.max_passes && history.back().max >= options.stop_energy; ++pass) {
+  bool just_resized = false, hit_floor = false, settled = options.sizing == nullptr;
+  for (int pass = 0; pass < options.max_passes && (history.back().max >= options.stop_energy || !settled);
+       ++pass) {
+    const std::size_t tets_before = mesh.num_tets();
     run_pass(ws, stats);
+    settled = sizing_settled(options, tets_before, mesh.num_tets());
     stats.passes = pass + 1;
     const std::vector<double> energy = tet_energies(ws, true);
     const EnergyState state = energy_state(ws, energy);

@@ -4,6 +4,9 @@
 #include <mr/core/errors.h>
 #include <mr/tetmesh/incidence.h>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -68,11 +71,35 @@ std::vector<Index> Workspace::edge_tets(Index a, Index b, Index hint) {
   return tets_around_edge(mesh, a, b, hint);
 }
 
-double Workspace::target(Index a, Index b) const {
-  const double sa = a < sizing.size() ? sizing[a] : 1.0;
-  const double sb = b < sizing.size() ? sizing[b] : 1.0;
-  return target_edge_length * 0.5 * (sa + sb);
+// A field value far from the global target is clamped: the lattice and
+// the envelope work at the global target's scale, and a field a thousand
+// times finer would make a billion tets (use -l for a finer mesh overall).
+constexpr double kFieldScaleRange = 100;
+
+double Workspace::sampled_scale(Index v) const {
+  const double value = field_->at(mesh.position(v).approx) / target_edge_length;
+  if (!(value > 0)) return 1.0;  // NaN: the field says nothing here
+  return std::clamp(value, 1 / kFieldScaleRange, kFieldScaleRange);
 }
+
+void Workspace::use_sizing_field(const ScalarField* field) {
+  field_ = field;
+  field_scale.assign(mesh.vertex_slots(), 1.0);
+  if (field_ == nullptr) return;
+  tbb::parallel_for(tbb::blocked_range<Index>(0, Index(mesh.vertex_slots()), 256),
+                    [&](const tbb::blocked_range<Index>& range) {
+                      for (Index v = range.begin(); v != range.end(); ++v)
+                        if (mesh.vertex_alive(v)) field_scale[v] = sampled_scale(v);
+                    });
+}
+
+double Workspace::scale(Index v) const {
+  const double refined = v < sizing.size() ? sizing[v] : 1.0;
+  const double field = v < field_scale.size() ? field_scale[v] : 1.0;
+  return refined * field;
+}
+
+double Workspace::target(Index a, Index b) const { return target_edge_length * 0.5 * (scale(a) + scale(b)); }
 
 void Workspace::note_tets(std::span<const Index> tets) {
   for (const Index t : tets) {
@@ -95,6 +122,9 @@ std::vector<Index> Workspace::counted(std::span<const Index> tets) const {
 void Workspace::note_vertex(Index v, double size) {
   if (v >= sizing.size()) sizing.resize(std::size_t(v) + 1, 1.0);
   sizing[v] = size;
+  if (field_ == nullptr) return;
+  if (v >= field_scale.size()) field_scale.resize(std::size_t(v) + 1, 1.0);
+  field_scale[v] = sampled_scale(v);
 }
 
 namespace {

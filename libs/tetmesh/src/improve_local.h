@@ -5,6 +5,7 @@
 // before it edits anything, and the one routine that replaces a cavity of
 // tets while carrying the tracked-surface ids over.
 
+#include <mr/core/scalar_field.h>
 #include <mr/envelope/envelope.h>
 #include <mr/tetmesh/improve.h>
 #include <mr/tetmesh/mesh.h>
@@ -39,10 +40,20 @@ class Workspace {
   const TriangleSoup* triangles = nullptr;
   double target_edge_length;
   double stop_energy;
-  /// Per vertex slot: scale of the local target length (1: the global target).
+  /// Per vertex slot: scale of the local target length (1: the global
+  /// target), shrunk around bad tets by update_sizing.
   std::vector<double> sizing;
+  /// Per vertex slot: the user's sizing field at the vertex over the global
+  /// target (1 without a field), sampled where the vertex was made.
+  std::vector<double> field_scale;
   /// ImproveOptions::release_junctions.
   bool release_junctions = false;
+  /// Edges shorter than this share of their target are collapsed (longer
+  /// than 4/3 of it split). 4/5 as fTetWild by default; with a sizing field
+  /// 2/3, so that the halves of a split edge are never collapse candidates
+  /// (with 4/5, splits and collapses of edges between 4/3 and 8/5 of their
+  /// target undid each other on 40% of the tets every pass, trimesh/teapot).
+  double collapse_below = 0.8;
   /// Per tet slot, its fate and value (TetPayload, improve.h); kept up to
   /// date by replace_tets.
   TetPayload payload;
@@ -60,14 +71,23 @@ class Workspace {
   /// `hint`, when it is a live tet with both corners, saves the walk around
   /// a's star to find one (long on the cut points where many triangles cross).
   std::vector<Index> edge_tets(Index a, Index b, Index hint = kNoTet);
-  /// Target length of edge (a, b) under the local sizing.
+  /// Samples `field` (ImproveOptions::sizing) at every live vertex, and
+  /// from now on at every vertex made.
+  void use_sizing_field(const ScalarField* field);
+  /// Local target length at vertex v over the global one: the sizing
+  /// field's scale times the refinement's.
+  double scale(Index v) const;
+  /// Target length of edge (a, b): the mean of its ends' local targets.
   double target(Index a, Index b) const;
   /// Records that `tets` are live and use their corners (after an edit).
   void note_tets(std::span<const Index> tets);
+  /// Records new vertex v with refinement scale `size`; samples the field.
   void note_vertex(Index v, double size);
 
  private:
   Index find_seed(Index v);
+  double sampled_scale(Index v) const;
+  const ScalarField* field_ = nullptr;
   std::vector<Index> seed_;
 };
 

@@ -109,11 +109,12 @@ std::size_t split_pass(Workspace& ws) {
 
 std::size_t collapse_pass(Workspace& ws) {
   std::size_t done = 0;
-  const auto short_edge = [](double length, double target) { return length < 0.8 * target; };
+  const double below = ws.collapse_below;
+  const auto short_edge = [below](double length, double target) { return length < below * target; };
   for (const EdgeCandidate& e : edge_candidates(ws, short_edge, false)) {
     if (!ws.mesh.vertex_alive(e.a) || !ws.mesh.vertex_alive(e.b)) continue;
     // The edge may have grown since the candidates were collected.
-    if (edge_length(ws.mesh, e.a, e.b) >= 0.8 * ws.target(e.a, e.b)) continue;
+    if (edge_length(ws.mesh, e.a, e.b) >= below * ws.target(e.a, e.b)) continue;
     if (try_collapse(ws, e.a, e.b, CollapseGoal::quality) ||
         try_collapse(ws, e.b, e.a, CollapseGoal::quality)) {
       ++done;

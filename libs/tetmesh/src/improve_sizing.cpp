@@ -54,7 +54,7 @@ SizingUpdate update_sizing(Workspace& ws, std::span<const double> energy, double
   while (!queue.empty()) {
     const Visit at = queue.front();
     queue.pop_front();
-    const double radius = kReach * ws.target_edge_length * ws.sizing[at.seed];
+    const double radius = kReach * ws.target_edge_length * ws.scale(at.seed);
     const Vec3d& origin = mesh.position(at.seed).approx;
     for (const Index t : incidence.of(at.vertex)) {
       for (const Index w : mesh.tet(t)) {

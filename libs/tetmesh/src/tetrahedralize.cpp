@@ -211,6 +211,7 @@ detail::CarriedDecision improve(Mesh& mesh, const SurfaceBounds& bounds, std::sp
   improve_options.stop_energy = options.tetrahedralize.stop_energy;
   improve_options.max_passes = max_passes;
   improve_options.threads = options.tetrahedralize.threads;
+  improve_options.sizing = options.sizing.get();
   TetPayload payload;
   bool by_region = false;
   if (options.filter && bounds.triangles != nullptr) {

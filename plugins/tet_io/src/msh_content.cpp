@@ -81,6 +81,20 @@ std::vector<std::array<Index, N>> resolve(const std::vector<std::array<std::uint
   return resolved;
 }
 
+// One value per position, NaN for the nodes the field leaves out.
+std::vector<double> node_values(const MshNodeField& field, const NodeIndex& index, std::size_t nodes,
+                                const std::string& path) {
+  std::vector<double> values(nodes, std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < field.tags.size(); ++i) {
+    const std::optional<Index> node = index.find(field.tags[i]);
+    if (!node)
+      throw InputError(path, "$NodeData '" + field.name + "' gives a value for node tag " +
+                                 std::to_string(field.tags[i]) + ", which no $Nodes section defines");
+    values[*node] = field.values[i];
+  }
+  return values;
+}
+
 }  // namespace
 
 int msh_element_node_count(int type) {
@@ -115,6 +129,8 @@ TetMesh assemble_tet_mesh(MshContent&& content, const std::string& path) {
   mesh.tet_labels = std::move(content.tet_labels);
   mesh.face_labels = std::move(content.triangle_labels);
   mesh.tet_label_names = std::move(content.tet_label_names);
+  for (const MshNodeField& field : content.node_fields)
+    mesh.node_fields[field.name] = node_values(field, index, mesh.positions.size(), path);
   return mesh;
 }
 

@@ -17,6 +17,13 @@ namespace mr::plugins::tet {
 /// for types whose node count is not fixed (polygons, polyhedra).
 int msh_element_node_count(int type);
 
+/// A one-component $NodeData section, by node tag.
+struct MshNodeField {
+  std::string name;
+  std::vector<std::uint64_t> tags;
+  std::vector<double> values;
+};
+
 struct MshContent {
   std::vector<Vec3d> positions;
   std::vector<std::uint64_t> node_tags;  ///< one per position
@@ -25,6 +32,7 @@ struct MshContent {
   std::vector<std::array<std::uint64_t, 3>> triangles;
   std::vector<std::int32_t> triangle_labels;
   std::map<std::int32_t, std::string> tet_label_names;
+  std::vector<MshNodeField> node_fields;  ///< in file order; a later one of a name wins
 
   /// Keeps tets (type 4; corners of type 11) and triangles (type 2; corners
   /// of type 9); other types are skipped. `nodes` holds the element's first
@@ -33,7 +41,8 @@ struct MshContent {
 };
 
 /// Resolves node tags to indices. Throws InputError naming `path` for a node
-/// tag defined twice or an element that refers to an undefined node. Tets are
+/// tag defined twice or an element or node value that refers to an
+/// undefined node. Tets are
 /// kept as written, even when negatively oriented: the orientation contract
 /// is checked by the caller, not repaired silently here.
 TetMesh assemble_tet_mesh(MshContent&& content, const std::string& path);

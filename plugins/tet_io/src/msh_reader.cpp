@@ -1,5 +1,6 @@
 // Gmsh MSH reader: versions 2.x and 4.1, ASCII and binary. Sections other
-// than $MeshFormat, $Entities, $Nodes and $Elements are skipped.
+// than $MeshFormat, $Entities, $PhysicalNames, $Nodes, $Elements and
+// $NodeData are skipped.
 
 #include "msh_sections.h"
 #include "tet_formats_internal.h"
@@ -90,6 +91,8 @@ class MshReader {
     } else if (name == "$Elements") {
       v4 ? read_msh4_elements(cursor_, encoding, labels_, content_)
          : read_msh2_elements(cursor_, encoding, content_);
+    } else if (name == "$NodeData") {
+      read_msh_node_data(cursor_, encoding, content_);
     } else {
       return false;
     }

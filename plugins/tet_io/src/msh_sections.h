@@ -25,4 +25,7 @@ void read_msh4_elements(io::TextCursor& cursor, const MshEncoding& encoding, con
 void read_msh2_nodes(io::TextCursor& cursor, const MshEncoding& encoding, MshContent& content);
 void read_msh2_elements(io::TextCursor& cursor, const MshEncoding& encoding, MshContent& content);
 
+/// $NodeData (the same in both versions); keeps one-component fields.
+void read_msh_node_data(io::TextCursor& cursor, const MshEncoding& encoding, MshContent& content);
+
 }  // namespace mr::plugins::tet

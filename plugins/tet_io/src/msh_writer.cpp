@@ -1,6 +1,7 @@
 // Gmsh MSH writer: 4.1 (default) or 2.2, ASCII or binary. Tets are element
 // type 4 and triangles type 2; each element's label is both its physical tag
 // and (when positive) its elementary/entity tag. Node tags are 1..N in order.
+// Node fields (TetMesh::node_fields) follow as $NodeData sections.
 
 #include "msh_layout.h"
 #include "tet_formats_internal.h"
@@ -207,6 +208,27 @@ void write_msh2_elements(MshOutput& out, const TetMesh& mesh, const MshLayout& l
   out.end_section("$EndElements");
 }
 
+// ---- both versions ----
+
+// One $NodeData section per field: a time 0.0, step 0, one component, and
+// a record (node tag, value) per node; the node tag is an int in both
+// versions (as gmsh reads it).
+void write_node_data(MshOutput& out, const TetMesh& mesh) {
+  for (const auto& [name, values] : mesh.node_fields) {
+    out.begin_section("$NodeData");
+    std::string quoted = name;
+    std::replace(quoted.begin(), quoted.end(), '"', '\'');
+    std::replace(quoted.begin(), quoted.end(), '\n', ' ');
+    out.file() << "1\n\"" << quoted << "\"\n1\n0\n3\n0\n1\n" << std::to_string(values.size()) << "\n";
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      out.int32(static_cast<std::int32_t>(i + 1));
+      out.real(values[i]);
+      out.end_line();
+    }
+    out.end_section("$EndNodeData");
+  }
+}
+
 }  // namespace
 
 void write_msh(const TetMesh& mesh, const std::filesystem::path& path, const io::WriteOptions& options) {
@@ -214,6 +236,9 @@ void write_msh(const TetMesh& mesh, const std::filesystem::path& path, const io:
   if (!v22 && options.msh_version != "4.1")
     throw UsageError("unsupported MSH version '" + options.msh_version + "' (use 4.1 or 2.2)");
   if (v22) check_int32_counts(mesh, path);
+  if (!mesh.node_fields.empty() &&
+      mesh.positions.size() >= std::size_t(std::numeric_limits<std::int32_t>::max()))
+    throw RunError("cannot write " + path.string() + ": node data numbers nodes with 32-bit ints");
   const MshLayout layout = make_msh_layout(mesh);
   io::OutputFile file(path);
   MshOutput out(file, options.binary);
@@ -227,6 +252,7 @@ void write_msh(const TetMesh& mesh, const std::filesystem::path& path, const io:
     write_msh4_nodes(out, mesh, layout);
     write_msh4_elements(out, mesh, layout);
   }
+  write_node_data(out, mesh);
   file.close();
 }
 

@@ -2,6 +2,8 @@
 
 #include "vdb_level_set.h"
 
+#include <mr/io/file_bytes.h>
+
 namespace mr::plugins {
 
 void register_vdb_formats(io::Registry& registry) {
@@ -9,7 +11,8 @@ void register_vdb_formats(io::Registry& registry) {
   format.name = "vdb";
   format.extensions = {".vdb"};
   format.kind = io::MeshKind::surface;
-  format.description = "OpenVDB narrow-band level set (mesh <-> signed distance grid)";
+  format.description =
+      "OpenVDB narrow-band level set (mesh <-> signed distance grid); a float grid as a sizing field";
   format.read_surface_bytes = [](std::string_view bytes, const std::string& name,
                                  const io::ReadOptions& options) {
     return vdb::read_level_set(bytes, name, options.level_set);
@@ -17,6 +20,10 @@ void register_vdb_formats(io::Registry& registry) {
   format.write_surface = [](const TriangleSoup& soup, const std::filesystem::path& path,
                             const io::WriteOptions& options) {
     vdb::write_level_set(soup, path, options.level_set);
+  };
+  format.read_field = [](const std::filesystem::path& path) {
+    const std::vector<char> bytes = io::read_file_bytes(path);
+    return vdb::read_scalar_field(std::string_view(bytes.data(), bytes.size()), path.string());
   };
   registry.add(std::move(format));
 }

@@ -2,10 +2,12 @@
 // Internal interface between the format registration and the two files that
 // hold OpenVDB code. No OpenVDB type appears here.
 
+#include <mr/core/scalar_field.h>
 #include <mr/core/triangle_soup.h>
 #include <mr/io/options.h>
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -22,6 +24,12 @@ void write_level_set(const TriangleSoup& soup, const std::filesystem::path& path
 /// outward-oriented triangles. Throws InputError naming the file (`name`).
 TriangleSoup read_level_set(std::string_view bytes, const std::string& name,
                             const io::LevelSetReadOptions& options);
+
+/// The float grid named "sizing" of a .vdb file's bytes, else its first
+/// float grid, sampled trilinearly in world coordinates; NaN outside the
+/// grid's active voxels and their neighbours (where the grid says nothing).
+/// Throws InputError naming the file (`name`).
+std::shared_ptr<const ScalarField> read_scalar_field(std::string_view bytes, const std::string& name);
 
 /// openvdb::initialize() registers grid and transform types in OpenVDB's own
 /// process-wide registry, which io::File and io::Stream need before reading or writing. It is

@@ -1,4 +1,5 @@
-// Level set -> mesh: OpenVDB's volumeToMesh on the chosen float grid.
+// Level set -> mesh: OpenVDB's volumeToMesh on the chosen float grid; and a
+// float grid as a scalar field (trilinear samples in world coordinates).
 #include "vdb_declared_sizes.h"
 #include "vdb_level_set.h"
 
@@ -6,9 +7,12 @@
 
 #include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
+#include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -42,14 +46,60 @@ FloatGrid::Ptr choose_grid(const openvdb::GridPtrVec& grids, const std::string& 
 // io::Stream reads what io::File writes, from memory, all grids at once
 // (delayLoad = false). A read past the end throws (failbit) rather than
 // leaving OpenVDB to go on with values it never read.
-FloatGrid::Ptr read_float_grid(std::string_view bytes, const std::string& path) {
+openvdb::GridPtrVec read_grids(std::string_view bytes, const std::string& path) {
   check_vdb_declared_sizes(bytes, path);
   std::istringstream in(std::string(bytes), std::ios::binary);
   in.exceptions(std::ios::failbit | std::ios::badbit);
   openvdb::io::Stream stream(in, false);
   const openvdb::GridPtrVecPtr grids = stream.getGrids();
   if (!grids) throw InputError(path, "the file holds no grids");
-  return choose_grid(*grids, path);
+  return *grids;
+}
+
+// The grid named "sizing", else the first float grid.
+FloatGrid::Ptr choose_field_grid(const openvdb::GridPtrVec& grids, const std::string& path) {
+  FloatGrid::Ptr first;
+  for (const openvdb::GridBase::Ptr& grid : grids) {
+    FloatGrid::Ptr floats = openvdb::gridPtrCast<FloatGrid>(grid);
+    if (floats && floats->getName() == "sizing") return floats;
+    if (floats && !first) first = floats;
+  }
+  if (!first)
+    throw InputError(path, "the file holds no float grid (found " + std::to_string(grids.size()) + " grids)");
+  return first;
+}
+
+class GridField : public ScalarField {
+ public:
+  explicit GridField(FloatGrid::Ptr grid) : grid_(std::move(grid)) {}
+  // Reads a const tree without an accessor's cache: safe from any thread.
+  double at(const Vec3d& p) const override {
+    const openvdb::Vec3d index = grid_->worldToIndex(openvdb::Vec3d(p.x(), p.y(), p.z()));
+    const openvdb::Coord nearest = openvdb::Coord::round(index);
+    if (!grid_->tree().isValueOn(nearest)) return std::numeric_limits<double>::quiet_NaN();
+    return openvdb::tools::BoxSampler::sample(grid_->tree(), index);
+  }
+
+ private:
+  FloatGrid::Ptr grid_;
+};
+
+// Runs `read`, turning what OpenVDB and the stream throw into InputError.
+template <class Read>
+auto reporting_errors(const std::string& name, Read&& read) {
+  try {
+    return read();
+  } catch (const Error&) {
+    throw;
+  } catch (const openvdb::Exception& e) {
+    throw InputError(name, std::string("not a readable OpenVDB file: ") + e.what());
+  } catch (const std::bad_alloc&) {
+    throw InputError(name, "corrupt OpenVDB file: it claims more data than can be allocated");
+  } catch (const std::ios_base::failure&) {
+    throw InputError(name, "truncated OpenVDB file: it ends before the data it announces");
+  } catch (const std::exception& e) {
+    throw InputError(name, std::string("not a readable OpenVDB file: ") + e.what());
+  }
 }
 
 void check_values_finite(const FloatGrid& grid, const std::string& path) {
@@ -98,24 +148,23 @@ TriangleSoup read_level_set(std::string_view bytes, const std::string& name,
   if (!(options.adaptivity >= 0.0 && options.adaptivity <= 1.0))
     throw UsageError("the adaptivity must be between 0 and 1");
   ensure_openvdb_initialized();
-  try {
-    const FloatGrid::Ptr grid = read_float_grid(bytes, name);
+  return reporting_errors(name, [&] {
+    const FloatGrid::Ptr grid = choose_grid(read_grids(bytes, name), name);
     check_values_finite(*grid, name);
     TriangleSoup soup = mesh_level_set(*grid, options);
     if (soup.triangles.empty())
       throw InputError(name, "the level set has no surface at isovalue " + std::to_string(options.isovalue));
     return soup;
-  } catch (const Error&) {
-    throw;
-  } catch (const openvdb::Exception& e) {
-    throw InputError(name, std::string("not a readable OpenVDB level set: ") + e.what());
-  } catch (const std::bad_alloc&) {
-    throw InputError(name, "corrupt OpenVDB file: it claims more data than can be allocated");
-  } catch (const std::ios_base::failure&) {
-    throw InputError(name, "truncated OpenVDB file: it ends before the data it announces");
-  } catch (const std::exception& e) {
-    throw InputError(name, std::string("not a readable OpenVDB file: ") + e.what());
-  }
+  });
+}
+
+std::shared_ptr<const ScalarField> read_scalar_field(std::string_view bytes, const std::string& name) {
+  ensure_openvdb_initialized();
+  return reporting_errors(name, [&]() -> std::shared_ptr<const ScalarField> {
+    FloatGrid::Ptr grid = choose_field_grid(read_grids(bytes, name), name);
+    check_values_finite(*grid, name);
+    return std::make_shared<GridField>(std::move(grid));
+  });
 }
 
 }  // namespace mr::plugins::vdb

@@ -249,3 +249,24 @@ TEST_CASE("a .vdb stating a name or metadata longer than the file is refused bef
 }
 
 }  // namespace mr
+
+namespace mr {
+
+TEST_CASE("vdb: a float grid reads as a scalar field, NaN away from its active voxels", "[vdb][sizing]") {
+  test::TempDir dir("vdb_field");
+  const io::Registry registry = io::make_default_registry();
+  io::WriteOptions write;
+  write.level_set.voxel_size = 0.05;
+  io::write_surface(registry, test::cube_soup(), dir / "cube.vdb", write);
+  const io::Format* vdb = registry.by_name("vdb");
+  REQUIRE(vdb != nullptr);
+  REQUIRE(vdb->read_field);
+  const std::shared_ptr<const ScalarField> field = vdb->read_field(dir / "cube.vdb");
+  // The level set's values are signed distances near the surface.
+  CHECK(field->at(Vec3d(1.05, 0.5, 0.5)) == Approx(0.05).margin(0.01));
+  CHECK(field->at(Vec3d(0.95, 0.5, 0.5)) == Approx(-0.05).margin(0.01));
+  CHECK(std::isnan(field->at(Vec3d(5, 5, 5))));
+  CHECK_THROWS_AS(vdb->read_field(dir / "missing.vdb"), InputError);
+}
+
+}  // namespace mr

@@ -1,7 +1,8 @@
 #pragma once
 // A tetrahedral mesh: positions, tets (positively oriented: orient3d > 0 in
 // the convention of mr::orient3d), a label per tet, and optionally labelled
-// surface triangles (boundary or interface faces carried by MSH and Medit files).
+// surface triangles (boundary or interface faces carried by MSH and Medit files),
+// and optionally named scalar values per vertex (MSH $NodeData).
 
 #include <mr/core/types.h>
 
@@ -21,6 +22,11 @@ struct TetMesh {
 
   std::vector<Triangle> faces;            ///< optional tagged surface triangles
   std::vector<std::int32_t> face_labels;  ///< empty or faces.size() entries
+
+  /// Scalar node data by name (MSH $NodeData of one component, e.g. the
+  /// "values" of a sizing field): positions.size() entries each, NaN where
+  /// the file gives no value for a vertex.
+  std::map<std::string, std::vector<double>> node_fields;
 
   std::size_t num_vertices() const { return positions.size(); }
   std::size_t num_tets() const { return tets.size(); }

@@ -4,6 +4,7 @@
 // global registry: callers build one (see mr/io/default_registry.h).
 
 #include <mr/core/coordinate_grid.h>
+#include <mr/core/scalar_field.h>
 #include <mr/core/tet_mesh.h>
 #include <mr/core/triangle_soup.h>
 #include <mr/io/options.h>
@@ -47,6 +48,10 @@ struct Format {
   /// `options`, for positions inside [lo, hi]. Empty: every double is stored
   /// exactly (the default).
   std::function<CoordinateGrid(const WriteOptions&, const Vec3d& lo, const Vec3d& hi)> position_grid;
+  /// Reader of a scalar field sampled on a grid (a float grid of a .vdb
+  /// file), for `tetrahedralize --sizing`; empty for formats without one.
+  /// A tet mesh's node fields are read with read_volume instead.
+  std::function<std::shared_ptr<const ScalarField>(const std::filesystem::path&)> read_field;
 
   bool can_read() const { return read_surface || read_volume; }
   bool can_write() const { return write_surface || write_volume; }

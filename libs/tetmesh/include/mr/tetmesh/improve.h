@@ -13,6 +13,7 @@
 // Operations are applied in a fixed order and the parallel parts work on
 // independent sets, so the result does not depend on the thread count.
 
+#include <mr/core/scalar_field.h>
 #include <mr/core/triangle_soup.h>
 #include <mr/envelope/envelope.h>
 #include <mr/tetmesh/logger.h>
@@ -53,6 +54,12 @@ struct ImproveOptions {
   /// tracked surface is a cycle, or that decides per tet and keeps only
   /// tets improved as kWritten, as it does on an open input.
   bool release_junctions = false;
+  /// A target edge length that varies in space (absolute, not owned; null:
+  /// target_edge_length everywhere). Sampled at each vertex where it is made
+  /// and clamped to [1/100, 100] times target_edge_length; where it is NaN,
+  /// target_edge_length holds. Improvement then also goes on, past the stop
+  /// energy, while a pass changes the number of tets by more than 2%.
+  const ScalarField* sizing = nullptr;
 };
 
 /// Quality of the live tets, measured on the double (approx) positions.

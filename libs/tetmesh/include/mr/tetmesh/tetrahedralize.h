@@ -4,12 +4,14 @@
 // mesh, insert every input triangle exactly, improve the mesh, filter by the
 // winding number. Tools (tetrahedralize, meshrepair) are thin wrappers.
 
+#include <mr/core/scalar_field.h>
 #include <mr/core/tet_mesh.h>
 #include <mr/core/triangle_soup.h>
 #include <mr/tetmesh/logger.h>
 #include <mr/tetmesh/options.h>
 #include <mr/tetmesh/stats.h>
 
+#include <memory>
 #include <string_view>
 
 namespace mr::tetmesh {
@@ -43,6 +45,9 @@ struct PipelineOptions {
   /// Run the mesh-improvement stage. meshrepair's fast path turns it off:
   /// it needs a valid embedding, not well-shaped tets.
   bool improve = true;
+  /// Target edge length varying in space for improvement
+  /// (ImproveOptions::sizing; tetrahedralize --sizing); null: uniform.
+  std::shared_ptr<const ScalarField> sizing;
 };
 
 struct PipelineResult {
