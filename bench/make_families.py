@@ -9,6 +9,8 @@ Every model of a corpus whose MANIFEST.tsv says closed == 1 becomes up to four f
   the bbox diagonal); OBJ with %.17g coordinates (exact);
 - overlap: the welded model and a copy translated by a third of the bbox diagonal vector, so that
   the two overlap and intersect; OBJ with %.17g coordinates.
+- far (only when asked for): the welded model moved 1e5 times its bbox diagonal from the origin in a
+  random direction, where float32 steps exceed epsilon; OBJ with %.17g coordinates.
 - graze (only when asked for): the welded model and a nearly coincident copy, turned by 0.002 rad
   about a random axis through the bbox centre and moved by 0.5 eps in a random direction, so that
   the two surfaces cross each other at grazing angles everywhere (assemblies with coincident faces,
@@ -47,15 +49,17 @@ except ImportError:
 BENCH_DIR = os.path.dirname(os.path.abspath(__file__))
 REPO_DIR = os.path.dirname(BENCH_DIR)
 DEFAULT_CORPUS = os.path.normpath(os.path.join(REPO_DIR, "..", "shared", "corpus"))
-FAMILIES = ("soup", "soup_dup_flip", "jitter", "overlap", "graze")
+FAMILIES = ("soup", "soup_dup_flip", "jitter", "overlap", "graze", "far")
 DEFAULT_FAMILIES = FAMILIES[:4]
-EXTENSION = {"soup": ".stl", "soup_dup_flip": ".stl", "jitter": ".obj", "overlap": ".obj", "graze": ".obj"}
+EXTENSION = {"soup": ".stl", "soup_dup_flip": ".stl", "jitter": ".obj", "overlap": ".obj", "graze": ".obj",
+             "far": ".obj"}
 TAGS = {"soup": "soup,unwelded", "soup_dup_flip": "soup_dup_flip,unwelded,duplicate-faces,flipped-faces",
         "jitter": "jitter,perturbed", "overlap": "overlap,self-intersecting,multi-component",
-        "graze": "graze,self-intersecting,multi-component,near-coincident"}
+        "graze": "graze,self-intersecting,multi-component,near-coincident", "far": "far-from-origin"}
 DUPLICATED, FLIPPED = 0.10, 0.05  # fractions of the triangles in soup_dup_flip
 JITTER = 0.5  # of epsilon
 GRAZE_ANGLE, GRAZE_SHIFT = 0.002, 0.5  # radians; of epsilon
+FAR = 1e5  # of the bbox diagonal
 EPSILON = 1e-3  # of the bbox diagonal
 MANIFEST_COLUMNS = ("file", "format", "bytes", "source", "license", "attribution", "family", "original",
                     "vertices", "faces", "boundary_edges", "closed", "tags")
@@ -188,7 +192,15 @@ def graze(vertices, triangles, rng):
             np.concatenate([triangles, triangles + len(vertices)]))
 
 
-MAKERS = {"soup": soup, "soup_dup_flip": soup_dup_flip, "jitter": jitter, "overlap": overlap, "graze": graze}
+def far(vertices, triangles, rng):
+    """The model moved FAR times its bbox diagonal from the origin, in a random direction: float32 steps
+    there are about 1.2e-2 of its size, twelve times epsilon (georeferenced scans, CAD parts placed in a
+    plant's coordinates)."""
+    return vertices + FAR * bbox_diagonal(vertices) * random_unit_vector(rng), triangles
+
+
+MAKERS = {"soup": soup, "soup_dup_flip": soup_dup_flip, "jitter": jitter, "overlap": overlap, "graze": graze,
+          "far": far}
 
 
 # ---------------------------------------------------------------- writing
@@ -326,7 +338,7 @@ def parse_args(argv):
     p.add_argument("--corpus", default=DEFAULT_CORPUS, help="corpus folder with MANIFEST.tsv (default: %(default)s)")
     p.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
     p.add_argument("--families", default=",".join(DEFAULT_FAMILIES),
-                   help=f"comma list of {', '.join(FAMILIES)} (default: all but graze)")
+                   help=f"comma list of {', '.join(FAMILIES)} (default: all but graze and far)")
     p.add_argument("--models", action="append", default=[], metavar="GLOB",
                    help="only models whose relative path or key matches (repeatable)")
     p.add_argument("--max-faces", type=int, help="only models with at most this many faces (MANIFEST's faces)")

@@ -211,6 +211,59 @@ TEST_CASE("a vertex no grid point works for is collapsed onto a placed neighbour
   REQUIRE(r.watertight());
 }
 
+TEST_CASE("float32 about an origin: exact steps of a power of two, chosen where floats are coarse",
+          "[grid]") {
+  const CoordinateGrid grid = CoordinateGrid::float32_about(Vec3d(1e6, -2.5, 0.0), 0x1p-20);
+  CHECK(grid.kind() == CoordinateGrid::Kind::float32_about);
+  CHECK(grid.nearest(0, 1e6 + 0.3) == 1e6 + std::round(0.3 * 0x1p20) * 0x1p-20);
+  CHECK(grid.step(1, -2.5, 3) == -2.5 + 3 * 0x1p-20);
+  CHECK(grid.holds(Vec3d(1e6 - 0x1p-20, -2.5 + 5 * 0x1p-20, 7 * 0x1p-20)));
+  CHECK_FALSE(grid.holds(Vec3d(1e6 + 0x1p-21, 0.0, 0.0)));
+  CHECK(grid.nearest(2, 1e9) == (0x1p24 - 1) * 0x1p-20);  // 2^24 - 1 units at most
+  CHECK_THROWS_AS(CoordinateGrid::float32_about(Vec3d(0.1, 0, 0), 0x1p-20), UsageError);
+  CHECK_THROWS_AS(CoordinateGrid::float32_about(Vec3d::Zero(), 0.3), UsageError);
+
+  // Near the origin floats are as fine: plain float32 (files as before).
+  CHECK(CoordinateGrid::float32_over(Vec3d(-1, -1, -1), Vec3d(2, 1, 1)).kind() ==
+        CoordinateGrid::Kind::float32);
+  // A unit box 1e5 away: floats are 2^-7 apart there, floats about its
+  // centre 2^-23 (its half-size is below 2^0).
+  const CoordinateGrid far = CoordinateGrid::float32_over(Vec3d(1e5, 0, 0), Vec3d(1e5 + 1, 1, 1));
+  REQUIRE(far.kind() == CoordinateGrid::Kind::float32_about);
+  CHECK(far.origin() == Vec3d(1e5 + 0.5, 0.5, 0.5));
+  CHECK(far.spacing_over(Vec3d(1e5, 0, 0), Vec3d(1e5 + 1, 1, 1)) == 0x1p-23);
+  CHECK(CoordinateGrid::float32().spacing_over(Vec3d(1e5, 0, 0), Vec3d(1e5 + 1, 1, 1)) == 0x1p-7);
+  // At 2e9, doubles are 2^-22 apart: the unit stays above them.
+  const CoordinateGrid farther = CoordinateGrid::float32_over(Vec3d(2e9, 0, 0), Vec3d(2e9 + 1, 1, 1));
+  REQUIRE(farther.kind() == CoordinateGrid::Kind::float32_about);
+  CHECK(farther.spacing_over(Vec3d(2e9, 0, 0), Vec3d(2e9 + 1, 1, 1)) == 0x1p-20);
+}
+
+TEST_CASE("glTF stores positions far from the origin about a node translation, exactly", "[grid][io]") {
+  const io::Registry registry = io::make_default_registry();
+  test::TempDir dir("grid_gltf_far");
+  const TriangleSoup soup = cubes_apart_by(0.5, Vec3d(1e6, -3e5, 2e6));
+  Vec3d lo = soup.positions[0], hi = lo;
+  for (const Vec3d& p : soup.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  for (const char* name : {"far.glb", "far.gltf"}) {
+    CAPTURE(name);
+    io::WriteOptions options;
+    const CoordinateGrid grid = io::surface_position_grid(registry, dir / name, options, lo, hi);
+    REQUIRE(grid.kind() == CoordinateGrid::Kind::float32_about);
+    CHECK(grid.spacing_over(lo, hi) <= 0x1p-21);
+    const TriangleSoup on_grid = rounded_naively(soup, grid);
+    for (const bool told : {true, false}) {  // as meshrepair writes it, and as a plain write
+      CAPTURE(told);
+      if (told) options.gltf_position_grid = grid;
+      io::write_surface(registry, on_grid, dir / name, options);
+      const TriangleSoup back = io::read_surface(registry, dir / name);
+      REQUIRE(back.positions.size() == on_grid.positions.size());
+      for (std::size_t i = 0; i < back.positions.size(); ++i)
+        REQUIRE(back.positions[i] == on_grid.positions[i]);
+    }
+  }
+}
+
 TEST_CASE("writers store positions exactly on the grid they announce", "[grid][io]") {
   const io::Registry registry = io::make_default_registry();
   test::TempDir dir("grid_writers");
@@ -333,7 +386,8 @@ TEST_CASE("meshrepair's STL, GLB and Draco outputs stay watertight where float32
 TEST_CASE("meshrepair refuses at once a format that cannot store the model within epsilon", "[grid][e2e]") {
   // A unit cube 1e9 from the origin: floats there are 64 apart, epsilon is
   // 0.0017. Rounding onto them merged every vertex, and the search for
-  // places keeping the surface apart ran for minutes.
+  // places keeping the surface apart ran for minutes. GLB stores floats
+  // about a node translation (2^-20 apart there) and holds it.
   const io::Registry registry = io::make_default_registry();
   test::TempDir dir("meshrepair_far");
   TriangleSoup cube = test::cube_soup(0.0, 1.0);
@@ -341,7 +395,7 @@ TEST_CASE("meshrepair refuses at once a format that cannot store the model withi
   cube.triangles.pop_back();  // a hole, so that there is something to repair
   const auto input = dir / "far.obj";
   io::write_surface(registry, cube, input);
-  for (const char* name : {"out.glb", "out.stl", "out.drc"}) {
+  for (const char* name : {"out.stl", "out.drc"}) {
     SECTION(name) {
       const auto output = dir / name;
       const test::ToolRun run = test::run_tool(tools::meshrepair, {input.string(), output.string(), "-q"});
@@ -352,7 +406,7 @@ TEST_CASE("meshrepair refuses at once a format that cannot store the model withi
     }
   }
   SECTION("hole-fill too") {
-    const auto output = dir / "filled.glb";
+    const auto output = dir / "filled.stl";
     const test::ToolRun run = test::run_tool(tools::hole_fill, {input.string(), output.string(), "-q"});
     CHECK(run.exit_code == 2);
     CHECK_THAT(run.err, Catch::Contains("apart where the model lies"));
@@ -361,20 +415,29 @@ TEST_CASE("meshrepair refuses at once a format that cannot store the model withi
   SECTION("format-convert, for a surface it would keep watertight") {
     TriangleSoup closed = test::cube_soup(0.0, 1.0);
     for (Vec3d& p : closed.positions) p += Vec3d(1e9, -2e9, 5e8);
-    const auto closed_input = dir / "far_closed.obj", output = dir / "converted.glb";
+    const auto closed_input = dir / "far_closed.obj", output = dir / "converted.stl";
     io::write_surface(registry, closed, closed_input);
     const test::ToolRun run =
         test::run_tool(tools::format_convert, {closed_input.string(), output.string(), "-q"});
     CHECK(run.exit_code == 2);
     CHECK_THAT(run.err, Catch::Contains("apart where the model lies"));
     CHECK_FALSE(std::filesystem::exists(output));
+    const auto glb = dir / "converted.glb";
+    CHECK(test::run_tool(tools::format_convert, {closed_input.string(), glb.string(), "-q"}).exit_code == 0);
+    CHECK(io::read_surface(registry, glb).positions == closed.positions);
   }
-  SECTION("doubles hold it") {
-    const auto output = dir / "out.obj";
-    const test::ToolRun run = test::run_tool(tools::meshrepair, {input.string(), output.string(), "-q"});
-    CAPTURE(run.err);
-    REQUIRE(run.exit_code == 0);
-    CHECK(check::check_surface(io::read_surface(registry, output)).watertight());
+  for (const char* name : {"out.obj", "out.glb", "filled.glb"}) {
+    SECTION(std::string(name) + " holds it") {
+      const auto output = dir / name;
+      const bool fill = std::string(name) == "filled.glb";
+      const test::ToolRun run = test::run_tool(fill ? tools::hole_fill : tools::meshrepair,
+                                               {input.string(), output.string(), "-q"});
+      CAPTURE(run.err);
+      REQUIRE(run.exit_code == 0);
+      const TriangleSoup back = io::read_surface(registry, output);
+      CHECK(check::check_surface(back).watertight());
+      for (const Vec3d& p : back.positions) CHECK((p - Vec3d(1e9, -2e9, 5e8)).cwiseAbs().maxCoeff() <= 1.01);
+    }
   }
 }
 

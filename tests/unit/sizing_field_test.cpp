@@ -87,8 +87,10 @@ TEST_CASE("MSH node data round-trips through every MSH variant", "[tet_io][sizin
   mesh.node_fields["values"][5] = 1.0 / 3;  // not a short decimal
   mesh.node_fields["other"] = std::vector<double>(mesh.positions.size(), -2.5);
   const io::Registry registry = io::make_default_registry();
-  for (const auto& [file, binary, version] :
-       {std::tuple{"a.msh", false, "4.1"}, {"b.msh", true, "4.1"}, {"c.msh", false, "2.2"}, {"d.msh", true, "2.2"}}) {
+  for (const auto& [file, binary, version] : {std::tuple{"a.msh", false, "4.1"},
+                                              {"b.msh", true, "4.1"},
+                                              {"c.msh", false, "2.2"},
+                                              {"d.msh", true, "2.2"}}) {
     INFO(file);
     io::WriteOptions options;
     options.binary = binary;
@@ -106,9 +108,10 @@ TEST_CASE("MSH node data: nodes left out are NaN, unknown node tags are refused"
       "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n10 0 0 0\n20 1 0 0\n30 0 1 0\n40 0 0 1\n$EndNodes\n"
       "$Elements\n1\n1 4 2 0 1 10 20 30 40\n$EndElements\n";
   // Two string tags, a time, four integer tags (with a partition).
-  test::write_text(dir / "some.msh", head +
-                                         "$NodeData\n2\n\"values\"\n\"interpolation\"\n1\n0.5\n4\n0\n1\n3\n0\n"
-                                         "40 0.25\n10 0.5\n20 2e-1\n$EndNodeData\n");
+  test::write_text(dir / "some.msh",
+                   head +
+                       "$NodeData\n2\n\"values\"\n\"interpolation\"\n1\n0.5\n4\n0\n1\n3\n0\n"
+                       "40 0.25\n10 0.5\n20 2e-1\n$EndNodeData\n");
   const io::Registry registry = io::make_default_registry();
   const TetMesh some = io::read_volume(registry, dir / "some.msh");
   const std::vector<double>& values = some.node_fields.at("values");
@@ -118,13 +121,13 @@ TEST_CASE("MSH node data: nodes left out are NaN, unknown node tags are refused"
   CHECK(std::isnan(values[2]));
   CHECK(values[3] == 0.25);
 
-  test::write_text(dir / "bad.msh",
-                   head + "$NodeData\n1\n\"values\"\n0\n3\n0\n1\n1\n50 0.5\n$EndNodeData\n");
+  test::write_text(dir / "bad.msh", head + "$NodeData\n1\n\"values\"\n0\n3\n0\n1\n1\n50 0.5\n$EndNodeData\n");
   CHECK_THROWS_AS(io::read_volume(registry, dir / "bad.msh"), InputError);
 }
 
 TEST_CASE("a tet mesh sizing field interpolates its node values linearly", "[sizing]") {
-  const std::shared_ptr<const ScalarField> field = tetmesh::sizing_from_tet_mesh(linear_background(), "bg.msh");
+  const std::shared_ptr<const ScalarField> field =
+      tetmesh::sizing_from_tet_mesh(linear_background(), "bg.msh");
   for (const Vec3d& p : {Vec3d(0.3, 0.7, -0.2), Vec3d(-1, -1, -1), Vec3d(1.999, 0.5, 1.25), Vec3d(0, 0, 0)}) {
     CAPTURE(p.transpose());
     CHECK(field->at(p) == Approx(size(p)).epsilon(1e-12));
@@ -152,7 +155,8 @@ TEST_CASE("a sizing field needs tets and positive node values", "[sizing]") {
         Approx(size(Vec3d(0.5, 0.5, 0.5))));
 }
 
-TEST_CASE("tetrahedralize: edges follow a sizing field away from the surface", "[tetrahedralize][sizing][slow]") {
+TEST_CASE("tetrahedralize: edges follow a sizing field away from the surface",
+          "[tetrahedralize][sizing][slow]") {
   // The field grows from 0.04 at x = 0 to 0.16 at x = 1; the global target
   // (0.1) is between. Within 25% on edges more than 0.2 from the cube's
   // boundary, and the left third's edges clearly shorter than the right's.
@@ -194,7 +198,8 @@ TEST_CASE("tetrahedralize tool: --sizing takes a .msh with node values and refus
   TetMesh bare = linear_background();
   bare.node_fields.clear();
   io::write_volume(registry, bare, dir / "bare.msh");
-  for (const std::string& sizing : {(dir / "bare.msh").string(), (dir / "missing.msh").string(), cube.string()}) {
+  for (const std::string& sizing :
+       {(dir / "bare.msh").string(), (dir / "missing.msh").string(), cube.string()}) {
     const test::ToolRun bad = run_tetrahedralize({cube.string(), out.string(), "--sizing", sizing});
     CAPTURE(sizing, bad.err);
     CHECK(bad.exit_code == 2);

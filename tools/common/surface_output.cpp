@@ -39,6 +39,8 @@ std::optional<CoordinateGrid> finer_draco_grid(const io::Registry& registry, con
 }
 
 void write_on_grid(io::WriteOptions& options, const CoordinateGrid& grid) {
+  if (grid.kind() == CoordinateGrid::Kind::float32 || grid.kind() == CoordinateGrid::Kind::float32_about)
+    options.gltf_position_grid = grid;
   if (grid.kind() != CoordinateGrid::Kind::quantized) return;
   options.draco.position_bits = grid.quantization().bits;
   options.draco.position_grid = grid.quantization();

@@ -23,7 +23,8 @@ std::optional<CoordinateGrid> finer_draco_grid(const io::Registry& registry, con
                                                const io::WriteOptions& options, const Vec3d& lo,
                                                const Vec3d& hi, const CoordinateGrid& refused);
 
-/// Sets `options` to write positions on `grid` (a Draco grid; others need nothing).
+/// Sets `options` to write positions on `grid`: a Draco grid, or the
+/// float32 grid (plain or about an origin) a glTF writer is to use.
 void write_on_grid(io::WriteOptions& options, const CoordinateGrid& grid);
 
 /// Throws mr::UsageError naming `path` when `grid` stores positions more

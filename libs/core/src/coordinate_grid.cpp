@@ -14,6 +14,9 @@ namespace {
 // Steps of margin a quantized grid keeps around the box it is made for.
 constexpr int kQuantizationMargin = 8;
 
+// Largest |k| of a float32_about grid: k * unit is a float exactly.
+constexpr std::int64_t kAboutLevels = (std::int64_t{1} << 24) - 1;
+
 double nearest_float(double x) {
   const float f = static_cast<float>(x);  // round to nearest, ties to even
   return static_cast<double>(f);
@@ -76,6 +79,45 @@ CoordinateGrid CoordinateGrid::quantized(const Quantization& quantization) {
   return CoordinateGrid(Kind::quantized, quantization);
 }
 
+CoordinateGrid CoordinateGrid::float32_about(const Vec3d& origin, double unit) {
+  int exponent = 0;
+  if (!(unit > 0) || !std::isfinite(unit) || std::frexp(unit, &exponent) != 0.5)
+    throw UsageError("the unit of a float32 grid about an origin must be a power of two");
+  for (int axis = 0; axis < 3; ++axis) {
+    const double steps = origin[axis] / unit;
+    if (!std::isfinite(steps) || std::abs(steps) >= 0x1p52 || steps != std::round(steps))
+      throw UsageError("the origin of a float32 grid must be a multiple of its unit, below 2^52 units");
+  }
+  CoordinateGrid grid(Kind::float32_about, {});
+  grid.origin_ = origin;
+  grid.unit_ = unit;
+  return grid;
+}
+
+CoordinateGrid CoordinateGrid::float32_over(const Vec3d& lo, const Vec3d& hi) {
+  const CoordinateGrid floats = float32();
+  // Floats about the centre cover twice the box's larger half-extent
+  // (2^24 units reach 2^(e + 1) for a half-extent below 2^e).
+  const double half = 0.5 * (hi - lo).maxCoeff();
+  if (!(half > 0) || !std::isfinite(half)) return floats;
+  // The unit is also at least twice the double step at the centre, so
+  // that the centre is a multiple of it below 2^52 units.
+  const Vec3d centre = 0.5 * (lo + hi);
+  int half_exponent = 0, centre_exponent = 0;
+  std::frexp(half, &half_exponent);  // half < 2^half_exponent
+  std::frexp(centre.cwiseAbs().maxCoeff(), &centre_exponent);
+  const double unit = std::ldexp(1.0, std::max(half_exponent - 23, centre_exponent - 51));
+  if (!(unit > 0) || !std::isfinite(unit)) return floats;
+  Vec3d origin;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double steps = std::round(centre[axis] / unit);
+    if (!(std::abs(steps) < 0x1p52)) return floats;
+    origin[axis] = steps * unit;
+  }
+  if (floats.spacing_over(lo, hi) <= 4 * unit) return floats;
+  return float32_about(origin, unit);
+}
+
 CoordinateGrid CoordinateGrid::quantized_over(const Vec3d& lo, const Vec3d& hi, int bits) {
   if (bits < 1 || bits > 30)
     throw UsageError("quantization must be 1 to 30 bits, not " + std::to_string(bits));
@@ -105,6 +147,8 @@ std::string CoordinateGrid::name() const {
       return "float64";
     case Kind::float32:
       return "float32";
+    case Kind::float32_about:
+      return "float32 (about a glTF node translation)";
     case Kind::quantized:
       return std::to_string(quantization_.bits) + "-bit quantization";
   }
@@ -158,6 +202,16 @@ std::int64_t CoordinateGrid::nearest_level(int axis, double x) const {
   return best;
 }
 
+double CoordinateGrid::about_value(int axis, std::int64_t k) const {
+  return origin_[axis] + static_cast<double>(k) * unit_;  // exact: see float32_about
+}
+
+std::int64_t CoordinateGrid::about_level(int axis, double x) const {
+  const double k = std::round((x - origin_[axis]) / unit_);
+  if (std::isnan(k)) return 0;
+  return static_cast<std::int64_t>(std::clamp(k, -double(kAboutLevels), double(kAboutLevels)));
+}
+
 bool CoordinateGrid::holds(const Vec3d& p) const {
   if (nearest(p) != p) return false;
   if (kind_ != Kind::quantized) return true;
@@ -172,6 +226,8 @@ double CoordinateGrid::nearest(int axis, double x) const {
       return x;
     case Kind::float32:
       return nearest_float(x);
+    case Kind::float32_about:
+      return about_value(axis, about_level(axis, x));
     case Kind::quantized:
       return dequantize(axis, nearest_level(axis, x));
   }
@@ -194,6 +250,8 @@ double CoordinateGrid::step(int axis, double g, int steps) const {
       return double_steps(g, steps);
     case Kind::float32:
       return float_steps(g, steps);
+    case Kind::float32_about:
+      return about_value(axis, std::clamp(about_level(axis, g) + steps, -kAboutLevels, kAboutLevels));
     case Kind::quantized: {
       const std::int64_t q = std::clamp(nearest_level(axis, g) + steps, std::int64_t{0}, max_level_);
       return dequantize(axis, q);

@@ -84,9 +84,10 @@ std::shared_ptr<const ScalarField> sizing_from_tet_mesh(TetMesh mesh, const std:
   auto field = mesh.node_fields.find("values");
   if (field == mesh.node_fields.end() && mesh.node_fields.size() == 1) field = mesh.node_fields.begin();
   if (field == mesh.node_fields.end())
-    throw InputError(path, mesh.node_fields.empty()
-                               ? "a sizing field needs one value per node ($NodeData \"values\"); the file has none"
-                               : "the file has several node fields and none is named \"values\"");
+    throw InputError(path,
+                     mesh.node_fields.empty()
+                         ? "a sizing field needs one value per node ($NodeData \"values\"); the file has none"
+                         : "the file has several node fields and none is named \"values\"");
   std::vector<double> values = std::move(field->second);
   for (std::size_t v = 0; v < values.size(); ++v) {
     if (std::isnan(values[v]) || (values[v] > 0 && std::isfinite(values[v]))) continue;

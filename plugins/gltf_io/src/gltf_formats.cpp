@@ -20,8 +20,8 @@ void register_gltf_formats(io::Registry& registry) {
     };
     // Positions are float32 accessors, or Draco's grid with --draco.
     format.position_grid = [](const io::WriteOptions& options, const Vec3d& lo, const Vec3d& hi) {
-      return options.draco.compress_gltf ? io::draco_position_grid(options.draco, lo, hi)
-                                         : CoordinateGrid::float32();
+      if (options.draco.compress_gltf) return io::draco_position_grid(options.draco, lo, hi);
+      return options.gltf_position_grid ? *options.gltf_position_grid : CoordinateGrid::float32_over(lo, hi);
     };
     registry.add(std::move(format));
   };

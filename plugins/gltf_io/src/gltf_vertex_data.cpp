@@ -48,14 +48,14 @@ TriangleSoup sanitized_for_gltf(const TriangleSoup& soup) {
   return out;
 }
 
-FloatArrays float_arrays(const TriangleSoup& soup) {
+FloatArrays float_arrays(const TriangleSoup& soup, const Vec3d& origin) {
   FloatArrays a;
   a.positions.reserve(3 * soup.positions.size());
   a.min.fill(std::numeric_limits<float>::max());
   a.max.fill(std::numeric_limits<float>::lowest());
   for (const Vec3d& p : soup.positions) {
     for (int c = 0; c < 3; ++c) {
-      const auto f = static_cast<float>(p[c]);
+      const auto f = static_cast<float>(p[c] - origin[c]);
       if (!std::isfinite(f))
         throw RunError("a coordinate (" + std::to_string(p[c]) + ") does not fit in a glTF float");
       a.positions.push_back(f);

@@ -30,9 +30,10 @@ struct FloatArrays {
   std::array<float, 3> min{}, max{};  ///< of the float positions as written
 };
 
-/// Throws RunError if a coordinate does not fit in a float, or a face
-/// source in a float exactly.
-FloatArrays float_arrays(const TriangleSoup& soup);
+/// Positions relative to `origin` (the node's translation). Throws
+/// RunError if a coordinate does not fit in a float, or a face source in a
+/// float exactly.
+FloatArrays float_arrays(const TriangleSoup& soup, const Vec3d& origin = Vec3d::Zero());
 
 struct RegionGroup {
   int region = -1;  ///< -1: no region, no material

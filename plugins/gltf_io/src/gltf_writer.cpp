@@ -39,8 +39,8 @@ json position_accessor(int view, std::size_t count, const FloatArrays& arrays) {
 
 class DocumentBuilder {
  public:
-  DocumentBuilder(const TriangleSoup& soup, const io::DracoOptions& draco)
-      : soup_(soup), draco_(draco), material_writer_(soup) {}
+  DocumentBuilder(const TriangleSoup& soup, const io::WriteOptions& options)
+      : soup_(soup), draco_(options.draco), origin_(position_origin(soup, options)), material_writer_(soup) {}
 
   json build() {
     json doc = {{"asset", {{"version", "2.0"}, {"generator", MR_GLTF_GENERATOR}}}, {"scene", 0}};
@@ -54,7 +54,9 @@ class DocumentBuilder {
       return doc;
     }
     doc["scenes"] = json::array({{{"nodes", {0}}}});
-    doc["nodes"] = json::array({{{"mesh", 0}}});
+    json node = {{"mesh", 0}};
+    if (origin_ != Vec3d::Zero()) node["translation"] = {origin_.x(), origin_.y(), origin_.z()};
+    doc["nodes"] = json::array({node});
     doc["meshes"] = json::array({{{"primitives", primitives}}});
     if (!materials_.empty()) doc["materials"] = materials_;
     material_writer_.finish(doc);
@@ -78,7 +80,7 @@ class DocumentBuilder {
 
   // Vertex attributes shared by all primitives; one index accessor per region.
   json plain_primitives(const std::vector<RegionGroup>& groups) {
-    const FloatArrays a = float_arrays(soup_);
+    const FloatArrays a = float_arrays(soup_, origin_);
     const std::size_t n = soup_.num_vertices();
     json attributes;
     const auto add = [&](const char* name, const std::vector<float>& values, const char* type) {
@@ -169,8 +171,19 @@ class DocumentBuilder {
     }
   }
 
+  // Where positions are stored relative to (the node's translation): the
+  // origin of a float32 grid about one, zero for plain floats and Draco.
+  static Vec3d position_origin(const TriangleSoup& soup, const io::WriteOptions& options) {
+    if (options.draco.compress_gltf || soup.positions.empty()) return Vec3d::Zero();
+    if (options.gltf_position_grid) return options.gltf_position_grid->origin();
+    Vec3d lo = soup.positions.front(), hi = lo;
+    for (const Vec3d& p : soup.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    return CoordinateGrid::float32_over(lo, hi).origin();
+  }
+
   const TriangleSoup& soup_;
   const io::DracoOptions& draco_;
+  Vec3d origin_;
   BufferBuilder buffer_;
   MaterialWriter material_writer_;
   std::map<int, int> material_of_region_;
@@ -191,7 +204,7 @@ void write_gltf(const TriangleSoup& soup, const std::filesystem::path& path, con
   TriangleSoup clean = sanitized_for_gltf(soup);
   if (clean.has_face_sources())
     clean = options.draco.compress_gltf ? without_face_sources(clean) : with_own_vertices(clean);
-  DocumentBuilder builder(clean, options.draco);
+  DocumentBuilder builder(clean, options);
   json doc = builder.build();
   const std::vector<char>& bin = builder.bytes();
   if (!bin.empty()) {

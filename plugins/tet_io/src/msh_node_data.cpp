@@ -90,7 +90,8 @@ void read_msh_node_data(io::TextCursor& cursor, const MshEncoding& encoding, Msh
         field);
   } else {
     AsciiSource source(cursor);
-    read_records(source, shape, [](AsciiSource& s) { return s.size("node tag"); }, field);
+    read_records(
+        source, shape, [](AsciiSource& s) { return s.size("node tag"); }, field);
   }
   if (shape.components == 1) content.node_fields.push_back(std::move(field));
 }

@@ -9,6 +9,12 @@
 //   - doubles: every double (OBJ, OFF, PLY as written here): rounding is
 //     the identity;
 //   - float32: every float, rounding to nearest, ties to even;
+//   - float32 about an origin (glTF: floats plus the node's translation,
+//     in double): origin + k * unit for |k| < 2^24, unit a power of two,
+//     origin a multiple of it, so that each k * unit is a float and each
+//     sum a double, exactly. Far from the origin, float32 steps grow with
+//     the coordinates (0.0078 at 1e5); about the model's centre they
+//     stay a 2^-23 share of its size;
 //   - quantized: Draco's dequantized values origin[axis] + q * delta,
 //     q = 0 .. 2^bits - 1, computed in float arithmetic exactly as Draco's
 //     decoder does (delta = range / (2^bits - 1) in float), so that the
@@ -26,7 +32,7 @@ namespace mr {
 
 class CoordinateGrid {
  public:
-  enum class Kind { doubles, float32, quantized };
+  enum class Kind { doubles, float32, float32_about, quantized };
 
   /// Draco's position quantization: origin and range as stored in the file
   /// (a grid made from them holds them as they come out of Draco's options).
@@ -39,12 +45,22 @@ class CoordinateGrid {
   static CoordinateGrid doubles() { return CoordinateGrid(Kind::doubles, {}); }
   static CoordinateGrid float32() { return CoordinateGrid(Kind::float32, {}); }
   static CoordinateGrid quantized(const Quantization& quantization);
+  /// Floats about `origin` in steps of `unit` (a power of two; `origin` a
+  /// multiple of it, each coordinate below 2^52 units). Throws UsageError otherwise.
+  static CoordinateGrid float32_about(const Vec3d& origin, double unit);
+  /// The float32 grid a glTF writer stores positions inside [lo, hi] on:
+  /// float32 itself, or, where its steps there are more than four times
+  /// those of floats about the box's centre (a model away from the origin
+  /// by more than a few of its sizes), floats about that centre.
+  static CoordinateGrid float32_over(const Vec3d& lo, const Vec3d& hi);
   /// A quantization grid of `bits` covering the box [lo, hi] with a margin
   /// of a few steps on each side, so vertices moved by a few steps stay on it.
   static CoordinateGrid quantized_over(const Vec3d& lo, const Vec3d& hi, int bits);
 
   Kind kind() const { return kind_; }
   const Quantization& quantization() const { return quantization_; }
+  /// float32_about: the origin the floats are relative to (else zero).
+  const Vec3d& origin() const { return origin_; }
   /// True when every double is on the grid.
   bool is_identity() const { return kind_ == Kind::doubles; }
   /// "float64", "float32" or "16-bit quantization".
@@ -71,12 +87,16 @@ class CoordinateGrid {
   std::int64_t encoded_level(int axis, double x) const;
   bool stored_as_is(int axis, double x) const;
   std::int64_t nearest_level(int axis, double x) const;
+  double about_value(int axis, std::int64_t k) const;
+  std::int64_t about_level(int axis, double x) const;
 
   Kind kind_;
   Quantization quantization_;
   float delta_ = 0.0f;          ///< quantized: the step, in float as Draco computes it
   float inverse_delta_ = 0.0f;  ///< quantized: levels per unit, in float as Draco's encoder computes it
   std::int64_t max_level_ = 0;
+  Vec3d origin_ = Vec3d::Zero();  ///< float32_about
+  double unit_ = 0.0;             ///< float32_about
 };
 
 }  // namespace mr

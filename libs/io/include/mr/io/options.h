@@ -58,6 +58,11 @@ struct WriteOptions {
   /// MSH version to write: "4.1" or "2.2".
   std::string msh_version = "4.1";
   DracoOptions draco;
+  /// glTF/GLB without Draco: the grid positions were rounded onto (float32,
+  /// or float32 about an origin, which the writer then stores positions
+  /// relative to, the origin becoming the node's translation). Unset:
+  /// CoordinateGrid::float32_over the positions' box.
+  std::optional<CoordinateGrid> gltf_position_grid;
   LevelSetWriteOptions level_set;
   /// The file being written, set by write_surface (writers are handed a
   /// temporary path): companions are named after it (OBJ's .mtl, textures).
