@@ -6,6 +6,7 @@
 
 #include <mr/check/tet_check.h>
 #include <mr/core/errors.h>
+#include <mr/tetmesh/sizing_field.h>
 #include <mr/tetmesh/tetrahedralize.h>
 
 #include <string>
@@ -23,6 +24,22 @@ void check_output(const TetMesh& mesh) {
   if (!quality.valid())
     throw RunError("the mesh failed its final exact check (" + std::to_string(quality.inverted_tets) +
                    " inverted, " + std::to_string(quality.degenerate_tets) + " flat tets)");
+}
+
+// A background tet mesh with a target length per vertex:
+// (vertices (P, 3), tets (T, 4), values (P,)).
+std::shared_ptr<const ScalarField> sizing_from_object(const py::object& sizing) {
+  if (sizing.is_none()) return nullptr;
+  const auto parts = py::reinterpret_borrow<py::sequence>(sizing);
+  if (!py::isinstance<py::sequence>(sizing) || py::len(parts) != 3)
+    throw py::value_error("sizing: expected (vertices, tets, values) of a background tet mesh");
+  TetMesh mesh = tet_mesh_from_arrays({parts[0]}, {parts[1]});
+  const auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(parts[2]);
+  if (!values || values.ndim() != 1 || std::size_t(values.size()) != mesh.positions.size())
+    throw py::value_error("sizing: values must be a 1-D array of one length per vertex (" +
+                          std::to_string(mesh.positions.size()) + ")");
+  mesh.node_fields["values"].assign(values.data(), values.data() + values.size());
+  return tetmesh::sizing_from_tet_mesh(std::move(mesh), "sizing");
 }
 
 constexpr const char* kDoc =
@@ -57,6 +74,9 @@ Args:
         the input), "winding" (nesting depth) or "none".
     return_labels: also return the int32 label of each tet (its part's with
         the filter, region id + 1 for face regions; the region without it).
+    sizing: optional (vertices, tets, values) of a background tet mesh whose
+        values (absolute lengths, NaN for none) give the target edge length,
+        interpolated linearly (as --sizing FILE).
 
 Returns:
     (vertices, tets), or (vertices, tets, labels) with return_labels: float64
@@ -77,7 +97,7 @@ void bind_tetrahedralize(py::module_& m) {
          double edge_length, double edge_length_abs, double lattice, double lattice_clearance,
          double stop_energy, int max_passes, bool positive_winding, bool filter, double snap,
          bool skip_simplify, int threads, const py::object& face_regions, const std::string& labels,
-         bool return_labels) -> py::tuple {
+         bool return_labels, const py::object& sizing) -> py::tuple {
         TriangleSoup input = soup_from_arrays(vertices, faces);
         if (!face_regions.is_none())
           input.face_regions = regions_from_array(face_regions, input.triangles.size());
@@ -98,6 +118,7 @@ void bind_tetrahedralize(py::module_& m) {
         options.improve = max_passes > 0;
         options.filter = filter;
         options.labels = tetmesh::tet_labels_named(labels);
+        options.sizing = sizing_from_object(sizing);
         const TetMesh mesh = without_gil([&] {
           tetmesh::PipelineResult result = tetmesh::tetrahedralize(input, options);
           check_output(result.mesh);
@@ -114,7 +135,7 @@ void bind_tetrahedralize(py::module_& m) {
       py::arg("max_passes") = d.max_passes, py::arg("positive_winding") = false, py::arg("filter") = true,
       py::arg("snap") = d.snap_fraction, py::arg("skip_simplify") = d.skip_simplify,
       py::arg("threads") = d.threads, py::arg("face_regions") = py::none(), py::arg("labels") = "auto",
-      py::arg("return_labels") = false);
+      py::arg("return_labels") = false, py::arg("sizing") = py::none());
 }
 
 }  // namespace mr::python

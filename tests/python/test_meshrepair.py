@@ -119,6 +119,24 @@ def test_tetrahedralize_labels_tets_by_face_region(cube):
         meshrepair.tetrahedralize(both, all_faces, labels="materials")
 
 
+def test_tetrahedralize_follows_a_sizing_field(cube):
+    # A box of 6 tets over [-1, 2]^3 whose values give 0.11 to 0.13 over
+    # the unit cube, against a global target of 0.3.
+    corners = np.array([[x, y, z] for z in (-1, 2) for y in (-1, 2) for x in (-1, 2)], dtype=float)
+    kuhn = np.array([[0, 1, 3, 7], [0, 1, 5, 7], [0, 2, 3, 7], [0, 2, 6, 7], [0, 4, 5, 7], [0, 4, 6, 7]])
+    values = np.where(corners[:, 0] < 0, 0.08, 0.16)
+    plain = meshrepair.tetrahedralize(*cube, edge_length_abs=0.3, lattice=0)[1]
+    graded = meshrepair.tetrahedralize(*cube, edge_length_abs=0.3, lattice=0,
+                                       sizing=(corners, kuhn, values))[1]
+    assert len(graded) > 4 * len(plain)
+    with pytest.raises(ValueError, match="sizing"):
+        meshrepair.tetrahedralize(*cube, sizing=(corners, kuhn))
+    with pytest.raises(ValueError, match="sizing"):
+        meshrepair.tetrahedralize(*cube, sizing=(corners, kuhn, values[:3]))
+    with pytest.raises(meshrepair.InputError, match="positive"):
+        meshrepair.tetrahedralize(*cube, sizing=(corners, kuhn, -values))
+
+
 def test_check_tets_finds_inverted_tet():
     vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
     good = meshrepair.check_tets(vertices, [[0, 1, 2, 3]])
