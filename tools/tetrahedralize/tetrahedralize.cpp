@@ -86,7 +86,8 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       {"--sizing", "", "FILE",
        "target edge length varying in space, absolute: a tet mesh (.msh) with a value per node ($NodeData "
        "\"values\", fTetWild's --bg-mesh) interpolated linearly, or a float grid (.vdb, the grid \"sizing\" "
-       "or the first) sampled trilinearly; where it gives no value, -l holds; clamped to [l/100, 100 l]",
+       "or the first that is no level set) sampled trilinearly; where it gives no value, -l holds; clamped "
+       "to [l/100, 100 l]",
        [&](const std::string& v) { o.sizing_path = v; }},
       {"--surface", "", "FILE", "also write the tracked surface (the input as embedded)",
        [&](const std::string& v) { o.surface_path = v; }},

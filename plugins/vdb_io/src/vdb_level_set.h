@@ -26,7 +26,7 @@ TriangleSoup read_level_set(std::string_view bytes, const std::string& name,
                             const io::LevelSetReadOptions& options);
 
 /// The float grid named "sizing" of a .vdb file's bytes, else its first
-/// float grid, sampled trilinearly in world coordinates; NaN outside the
+/// float grid that is not a level set, sampled trilinearly in world coordinates; NaN outside the
 /// grid's active voxels and their neighbours (where the grid says nothing).
 /// Throws InputError naming the file (`name`).
 std::shared_ptr<const ScalarField> read_scalar_field(std::string_view bytes, const std::string& name);

@@ -56,17 +56,25 @@ openvdb::GridPtrVec read_grids(std::string_view bytes, const std::string& path) 
   return *grids;
 }
 
-// The grid named "sizing", else the first float grid.
+// The grid named "sizing", else the first float grid that is not a level
+// set: signed distances are no lengths (negative inside, and near zero at
+// the surface, where they would ask for the finest mesh).
 FloatGrid::Ptr choose_field_grid(const openvdb::GridPtrVec& grids, const std::string& path) {
   FloatGrid::Ptr first;
+  bool level_sets = false;
   for (const openvdb::GridBase::Ptr& grid : grids) {
     FloatGrid::Ptr floats = openvdb::gridPtrCast<FloatGrid>(grid);
-    if (floats && floats->getName() == "sizing") return floats;
-    if (floats && !first) first = floats;
+    if (!floats) continue;
+    if (floats->getName() == "sizing") return floats;
+    const bool level_set = floats->getGridClass() == openvdb::GRID_LEVEL_SET;
+    level_sets = level_sets || level_set;
+    if (!level_set && !first) first = floats;
   }
-  if (!first)
-    throw InputError(path, "the file holds no float grid (found " + std::to_string(grids.size()) + " grids)");
-  return first;
+  if (first) return first;
+  throw InputError(
+      path, level_sets ? "the file holds only level sets (signed distances), not a float grid of "
+                         "lengths (name it \"sizing\" to use it anyway)"
+                       : "the file holds no float grid (found " + std::to_string(grids.size()) + " grids)");
 }
 
 class GridField : public ScalarField {

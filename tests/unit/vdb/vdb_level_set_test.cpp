@@ -1,8 +1,11 @@
 #include "test_support.h"
+#include "tetrahedralize.h"
 
 #include <mr/core/errors.h>
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
+
+#include <openvdb/openvdb.h>
 
 #include <tbb/global_control.h>
 #include <catch2/catch.hpp>
@@ -251,22 +254,71 @@ TEST_CASE("a .vdb stating a name or metadata longer than the file is refused bef
 }  // namespace mr
 
 namespace mr {
+namespace {
+
+// A dense float grid named `name` of value 0.1 over [-0.2, 1.2]^3 (voxels
+// of 0.1), written with OpenVDB itself, as a user's tool would.
+void write_sizing_grid(const std::filesystem::path& path, const std::string& name) {
+  openvdb::initialize();
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName(name);
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
+  grid->tree().fill(openvdb::CoordBBox(openvdb::Coord(-2), openvdb::Coord(12)), 0.1f, true);
+  openvdb::io::File file(path.string());
+  file.write({grid});
+  file.close();
+}
+
+}  // namespace
 
 TEST_CASE("vdb: a float grid reads as a scalar field, NaN away from its active voxels", "[vdb][sizing]") {
   test::TempDir dir("vdb_field");
   const io::Registry registry = io::make_default_registry();
-  io::WriteOptions write;
-  write.level_set.voxel_size = 0.05;
-  io::write_surface(registry, test::cube_soup(), dir / "cube.vdb", write);
+  write_sizing_grid(dir / "sizing.vdb", "lengths");
   const io::Format* vdb = registry.by_name("vdb");
   REQUIRE(vdb != nullptr);
   REQUIRE(vdb->read_field);
-  const std::shared_ptr<const ScalarField> field = vdb->read_field(dir / "cube.vdb");
-  // The level set's values are signed distances near the surface.
-  CHECK(field->at(Vec3d(1.05, 0.5, 0.5)) == Approx(0.05).margin(0.01));
-  CHECK(field->at(Vec3d(0.95, 0.5, 0.5)) == Approx(-0.05).margin(0.01));
+  const std::shared_ptr<const ScalarField> field = vdb->read_field(dir / "sizing.vdb");
+  CHECK(field->at(Vec3d(0.53, 0.5, 0.21)) == Approx(0.1));
   CHECK(std::isnan(field->at(Vec3d(5, 5, 5))));
   CHECK_THROWS_AS(vdb->read_field(dir / "missing.vdb"), InputError);
+
+  // A level set is no field of lengths, unless named "sizing".
+  io::WriteOptions write;
+  write.level_set.voxel_size = 0.05;
+  io::write_surface(registry, test::cube_soup(), dir / "cube.vdb", write);
+  CHECK_THROWS_WITH(vdb->read_field(dir / "cube.vdb"), Catch::Contains("level set"));
+}
+
+TEST_CASE("tetrahedralize --sizing takes an OpenVDB float grid", "[vdb][sizing][tool]") {
+  test::TempDir dir("vdb_sizing_tool");
+  const io::Registry registry = io::make_default_registry();
+  write_sizing_grid(dir / "sizing.vdb", "sizing");
+  const auto cube = dir / "cube.obj";
+  io::write_surface(registry, test::cube_soup(), cube);
+  const auto coarse = dir / "coarse.msh", fine = dir / "fine.msh";
+  const std::vector<std::string> common = {"-q", "--lattice", "0", "--edge-length-abs", "0.4"};
+  auto args = [&](const std::filesystem::path& out) {
+    std::vector<std::string> all = {cube.string(), out.string()};
+    all.insert(all.end(), common.begin(), common.end());
+    return all;
+  };
+  REQUIRE(test::run_tool(tools::tetrahedralize, args(coarse)).exit_code == 0);
+  std::vector<std::string> with_field = args(fine);
+  with_field.insert(with_field.end(), {"--sizing", (dir / "sizing.vdb").string()});
+  const test::ToolRun run = test::run_tool(tools::tetrahedralize, with_field);
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+  CHECK(io::read_volume(registry, fine).tets.size() > 20 * io::read_volume(registry, coarse).tets.size());
+
+  io::WriteOptions write;
+  write.level_set.voxel_size = 0.05;
+  io::write_surface(registry, test::cube_soup(), dir / "cube.vdb", write);
+  std::vector<std::string> level_set = args(dir / "bad.msh");
+  level_set.insert(level_set.end(), {"--sizing", (dir / "cube.vdb").string()});
+  const test::ToolRun refused = test::run_tool(tools::tetrahedralize, level_set);
+  CHECK(refused.exit_code == 2);
+  CHECK_THAT(refused.err, Catch::Contains("cube.vdb") && Catch::Contains("level set"));
 }
 
 }  // namespace mr
