@@ -14,9 +14,11 @@
 #include "tetrahedralize.h"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <set>
 
 using namespace mr;
@@ -188,12 +190,32 @@ TEST_CASE("tetrahedralize tool: --sizing takes a .msh with node values and refus
   io::write_surface(registry, test::cube_soup(), cube);
   io::write_volume(registry, linear_background(), dir / "bg.msh");
   const auto out = dir / "out.msh";
-  const test::ToolRun good =
-      run_tetrahedralize({cube.string(), out.string(), "--sizing", (dir / "bg.msh").string(), "-q"});
-  INFO(good.err);
-  CHECK(good.exit_code == 0);
-  CHECK(std::filesystem::exists(out));
-  std::filesystem::remove(out);
+  const auto stats = dir / "stats.json";
+  // The stats say where the field had no value or was clamped: none here;
+  // with lengths in the wrong unit (x 1000), clamped everywhere.
+  const auto field_counts = [&](const std::string& field) {
+    const test::ToolRun run = run_tetrahedralize({cube.string(), out.string(), "--sizing", field,
+                                                  "--max-passes", "2", "-q", "--stats", stats.string()});
+    INFO(run.err);
+    CHECK(run.exit_code == 0);
+    CHECK(std::filesystem::exists(out));
+    std::filesystem::remove(out);
+    std::ifstream file(stats);
+    const nlohmann::json json = nlohmann::json::parse(file);
+    for (const nlohmann::json& stage : json["stages"])
+      if (stage["name"] == "improve")
+        return std::pair{stage["counts"]["sizing_field_outside"].get<std::size_t>(),
+                         stage["counts"]["sizing_field_clamped"].get<std::size_t>()};
+    FAIL("no improve stage in the stats");
+    return std::pair<std::size_t, std::size_t>{};
+  };
+  CHECK(field_counts((dir / "bg.msh").string()) == std::pair<std::size_t, std::size_t>{0, 0});
+  TetMesh in_millimetres = linear_background();
+  for (double& v : in_millimetres.node_fields["values"]) v *= 1000;
+  io::write_volume(registry, in_millimetres, dir / "mm.msh");
+  const auto [outside, clamped] = field_counts((dir / "mm.msh").string());
+  CHECK(outside == 0);
+  CHECK(clamped > 100);
 
   TetMesh bare = linear_background();
   bare.node_fields.clear();

@@ -160,7 +160,9 @@ ImproveStats run_passes(Mesh& mesh, const SurfaceBounds& bounds, const ImproveOp
   ws.triangles = bounds.triangles;
   ws.payload = std::move(payload);
   ws.release_junctions = options.release_junctions;
-  ws.use_sizing_field(options.sizing);
+  const Workspace::FieldSamples samples = ws.use_sizing_field(options.sizing);
+  stats.sizing_outside = samples.outside;
+  stats.sizing_clamped = samples.clamped;
   if (options.sizing != nullptr) ws.collapse_below = 2.0 / 3.0;
   std::vector<EnergyState> history{energy_state(ws, tet_energies(ws, true))};
   bool just_resized = false, hit_floor = false, settled = options.sizing == nullptr;
@@ -250,6 +252,15 @@ ImproveStats improve_mesh(Mesh& mesh, const SurfaceBounds& bounds, const Improve
        << " over the tets to be written), min dihedral " << stats.before.min_dihedral_deg << " -> "
        << stats.after.min_dihedral_deg << " deg, " << stats.rational_vertices << " rational vertices left";
   logger.log(LogLevel::info, text.str());
+  if (options.sizing != nullptr) {
+    std::ostringstream field;
+    field
+        << "improve: the sizing field gave no value at " << stats.sizing_outside
+        << " vertices (the global target held there) and one beyond [1/100, 100] times the global target at "
+        << stats.sizing_clamped << " (clamped)";
+    logger.log(stats.sizing_outside + stats.sizing_clamped > 0 ? LogLevel::info : LogLevel::debug,
+               field.str());
+  }
   return stats;
 }
 

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace mr::tetmesh::improve_detail {
 
@@ -76,21 +77,27 @@ std::vector<Index> Workspace::edge_tets(Index a, Index b, Index hint) {
 // times finer would make a billion tets (use -l for a finer mesh overall).
 constexpr double kFieldScaleRange = 100;
 
-double Workspace::sampled_scale(Index v) const {
+std::pair<double, Workspace::Sample> Workspace::sampled_scale(Index v) const {
   const double value = field_->at(mesh.position(v).approx) / target_edge_length;
-  if (!(value > 0)) return 1.0;  // NaN: the field says nothing here
-  return std::clamp(value, 1 / kFieldScaleRange, kFieldScaleRange);
+  if (!(value > 0)) return {1.0, Sample::outside};  // NaN: the field says nothing here
+  const double clamped = std::clamp(value, 1 / kFieldScaleRange, kFieldScaleRange);
+  return {clamped, clamped == value ? Sample::inside : Sample::clamped};
 }
 
-void Workspace::use_sizing_field(const ScalarField* field) {
+Workspace::FieldSamples Workspace::use_sizing_field(const ScalarField* field) {
   field_ = field;
   field_scale.assign(mesh.vertex_slots(), 1.0);
-  if (field_ == nullptr) return;
+  FieldSamples samples;
+  if (field_ == nullptr) return samples;
+  std::vector<Sample> kind(mesh.vertex_slots(), Sample::inside);
   tbb::parallel_for(tbb::blocked_range<Index>(0, Index(mesh.vertex_slots()), 256),
                     [&](const tbb::blocked_range<Index>& range) {
                       for (Index v = range.begin(); v != range.end(); ++v)
-                        if (mesh.vertex_alive(v)) field_scale[v] = sampled_scale(v);
+                        if (mesh.vertex_alive(v)) std::tie(field_scale[v], kind[v]) = sampled_scale(v);
                     });
+  samples.outside = std::size_t(std::count(kind.begin(), kind.end(), Sample::outside));
+  samples.clamped = std::size_t(std::count(kind.begin(), kind.end(), Sample::clamped));
+  return samples;
 }
 
 double Workspace::scale(Index v) const {
@@ -124,7 +131,7 @@ void Workspace::note_vertex(Index v, double size) {
   sizing[v] = size;
   if (field_ == nullptr) return;
   if (v >= field_scale.size()) field_scale.resize(std::size_t(v) + 1, 1.0);
-  field_scale[v] = sampled_scale(v);
+  field_scale[v] = sampled_scale(v).first;
 }
 
 namespace {

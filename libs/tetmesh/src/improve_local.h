@@ -71,9 +71,14 @@ class Workspace {
   /// `hint`, when it is a live tet with both corners, saves the walk around
   /// a's star to find one (long on the cut points where many triangles cross).
   std::vector<Index> edge_tets(Index a, Index b, Index hint = kNoTet);
+  /// How the sizing field answered at the vertices sampled.
+  struct FieldSamples {
+    std::size_t outside = 0;  ///< no value: the global target holds
+    std::size_t clamped = 0;  ///< beyond [1/100, 100] times the global target
+  };
   /// Samples `field` (ImproveOptions::sizing) at every live vertex, and
   /// from now on at every vertex made.
-  void use_sizing_field(const ScalarField* field);
+  FieldSamples use_sizing_field(const ScalarField* field);
   /// Local target length at vertex v over the global one: the sizing
   /// field's scale times the refinement's.
   double scale(Index v) const;
@@ -86,7 +91,8 @@ class Workspace {
 
  private:
   Index find_seed(Index v);
-  double sampled_scale(Index v) const;
+  enum class Sample : char { inside, outside, clamped };
+  std::pair<double, Sample> sampled_scale(Index v) const;
   const ScalarField* field_ = nullptr;
   std::vector<Index> seed_;
 };

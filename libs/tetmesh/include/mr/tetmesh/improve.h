@@ -80,6 +80,10 @@ struct ImproveStats {
   std::size_t edge_removals = 0;  ///< edges in 5 to 7 tets removed
   std::size_t smoothing_moves = 0;
   std::size_t refinements = 0;  ///< times a vertex's local target shrank
+  /// With a sizing field, of the vertices at the start: where it gave no
+  /// value (the global target held), and where its value was clamped.
+  std::size_t sizing_outside = 0;
+  std::size_t sizing_clamped = 0;
   int passes = 0;
   QualitySummary before;
   QualitySummary after;
