@@ -350,7 +350,8 @@ TEST_CASE("tetrahedralize: -l sets the mean edge length away from the surface", 
   // Issue 22: within 25% of the target, on the edges whose midpoint is more
   // than two targets from the boundary of the unit cube (near it, edges
   // follow the surface's own sizing).
-  for (const double relative : {0.03, 0.05}) {
+  // Above b/20 (0.08), the lattice takes the target's spacing.
+  for (const double relative : {0.03, 0.05, 0.08}) {
     tetmesh::PipelineOptions options;
     options.tetrahedralize.edge_length_rel = relative;
     options.tetrahedralize.threads = 2;
@@ -377,6 +378,22 @@ TEST_CASE("tetrahedralize: -l sets the mean edge length away from the surface", 
     CHECK(sum / double(far) >= 0.75 * target);
     CHECK(sum / double(far) <= 1.25 * target);
   }
+}
+
+TEST_CASE("tetrahedralize: a coarser -l gives fewer tets, also above the lattice's b/20",
+          "[tetrahedralize]") {
+  // On the b/20 lattice, the unit cube kept 5,865 tets at -l 0.1 and 4,784
+  // at -l 0.08: collapses cannot take a lattice finer than the target away.
+  std::vector<std::size_t> tets;
+  for (const double relative : {0.05, 0.08, 0.1}) {
+    tetmesh::PipelineOptions options;
+    options.tetrahedralize.edge_length_rel = relative;
+    options.tetrahedralize.threads = 2;
+    tets.push_back(tetmesh::tetrahedralize(test::cube_soup(), options).mesh.tets.size());
+  }
+  CAPTURE(tets);
+  CHECK(tets[0] > tets[1]);
+  CHECK(tets[1] > tets[2]);
 }
 
 TEST_CASE("tetrahedralize: improvement reaches the stop energy where the simplifier used its room",

@@ -54,7 +54,8 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       {"--edge-length-abs", "", "LEN", "absolute target edge length (overrides --edge-length)",
        [&](const std::string& v) { t.edge_length_abs = parse_double("--edge-length-abs", v); }},
       {"--lattice", "", "H",
-       "voxel-stuffing lattice spacing relative to the bbox diagonal (default 0.05; 0: none)",
+       "voxel-stuffing lattice spacing relative to the bbox diagonal, at least the target edge length "
+       "(default 0.05; 0: none)",
        [&](const std::string& v) { t.lattice_spacing_rel = parse_double("--lattice", v); }},
       {"--lattice-clearance", "", "D",
        "drop lattice points closer than D (relative to the bbox diagonal, > epsilon) to the input (default "

@@ -61,7 +61,12 @@ DerivedParameters derive_parameters(const TetrahedralizeOptions& options, const 
   p.epsilon = absolute_or_relative(options.epsilon_abs, options.epsilon_rel, p.diagonal, "epsilon");
   p.edge_length =
       absolute_or_relative(options.edge_length_abs, options.edge_length_rel, p.diagonal, "edge length");
-  p.lattice_spacing = options.lattice_spacing_rel * p.diagonal;
+  // Never finer than the target: a finer lattice only adds points the
+  // collapses must take away, and they cannot take all (a unit cube at
+  // -l 0.1 kept 5,865 tets on the b/20 lattice, more than at -l 0.08).
+  p.lattice_spacing = options.lattice_spacing_rel > 0.0
+                          ? std::max(options.lattice_spacing_rel * p.diagonal, p.edge_length)
+                          : 0.0;
   p.lattice_clearance = options.lattice_clearance_rel * p.diagonal;
   if (p.lattice_spacing > 0.0 && !(p.lattice_clearance > p.epsilon)) {
     throw UsageError(

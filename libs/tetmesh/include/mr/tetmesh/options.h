@@ -22,8 +22,9 @@ struct TetrahedralizeOptions {
   /// Target edge length relative to b; used when edge_length_abs is 0.
   double edge_length_rel = 1.0 / 20.0;
   double edge_length_abs = 0.0;
-  /// Voxel-stuffing lattice spacing relative to b (paper: b/20); 0 disables
-  /// the lattice (the background mesh then has the input and the box corners).
+  /// Voxel-stuffing lattice spacing relative to b (paper: b/20), at least
+  /// the target edge length; 0 disables the lattice (the background mesh
+  /// then has the input and the box corners).
   double lattice_spacing_rel = 1.0 / 20.0;
   /// Lattice points within this distance (relative to b) of the input are
   /// dropped (paper: delta = b/40, and delta must exceed epsilon).
