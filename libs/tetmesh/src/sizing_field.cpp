@@ -62,7 +62,8 @@ TetMeshField::TetMeshField(TetMesh mesh, std::vector<double> values)
 // relative 1e-9), the first such tet in index order.
 double TetMeshField::at(const Vec3d& p) const {
   constexpr double kSlack = 1e-9;
-  std::vector<std::uint32_t> candidates;
+  // Sampled at every vertex, from every thread: one buffer per thread.
+  thread_local std::vector<std::uint32_t> candidates;
   grid_.query(p, p, candidates);
   double best_margin = -kSlack, value = std::numeric_limits<double>::quiet_NaN();
   for (const std::uint32_t t : candidates) {

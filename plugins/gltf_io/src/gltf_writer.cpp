@@ -176,9 +176,8 @@ class DocumentBuilder {
   static Vec3d position_origin(const TriangleSoup& soup, const io::WriteOptions& options) {
     if (options.draco.compress_gltf || soup.positions.empty()) return Vec3d::Zero();
     if (options.gltf_position_grid) return options.gltf_position_grid->origin();
-    Vec3d lo = soup.positions.front(), hi = lo;
-    for (const Vec3d& p : soup.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    return CoordinateGrid::float32_over(lo, hi).origin();
+    const Eigen::AlignedBox3d box = bounding_box(soup);
+    return CoordinateGrid::float32_over(box.min(), box.max()).origin();
   }
 
   const TriangleSoup& soup_;
