@@ -17,6 +17,8 @@ packages=(
   pybind11-dev python3-dev python3-pytest python3-distributed python3-dask
   # formatting, fuzzing and sanitizer runtimes
   clang-format clang libfuzzer-14-dev libclang-rt-14-dev
+  # the ThreadSanitizer build of oneTBB from Debian's source package (scripts/tsan_tbb.sh)
+  curl xz-utils ca-certificates
 )
 
 missing=()

@@ -72,6 +72,9 @@ DistanceReport one_sided_distance(const TriangleSoup& from, const TriangleSoup& 
   }
   if (triangles.empty() || from.triangles.empty()) return report;
   Tree tree(triangles.begin(), triangles.end());
+  // Built here, not lazily by the first query: a query reads the primitives before it takes the
+  // lock under which the first one sorts them (a data race between the threads below).
+  tree.build();
   tree.accelerate_distance_queries();
   const std::vector<Vec3d> samples = sample_points(from, options);
   std::vector<double> distances(samples.size());
