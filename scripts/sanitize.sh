@@ -52,7 +52,7 @@ run_thread() {
   local tbb
   tbb=$(scripts/tsan_tbb.sh)
   export LD_LIBRARY_PATH="$tbb/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-  export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
+  export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/tests/tsan.supp"
   # The stages that run on several threads, but the [slow] cases (the Release suite runs them), the
   # tests that start gmsh or Python (programs that cannot load the instrumented libtbb) and OpenVDB
   # (which uses TBB from its own uninstrumented library).

@@ -215,6 +215,24 @@ TEST_CASE("improve: lowers the energy, keeps the mesh valid and the surface in p
   CHECK(surface.area == Approx(6.0).margin(4 * 12 * fixture.envelope->epsilon()));
 }
 
+TEST_CASE("improve: passes that end above the stop energy are polished without splits, never worse",
+          "[improve]") {
+  Fixture fixture;
+  ImproveOptions options = options_with_threads(2);
+  options.stop_energy = 3.01;  // a regular tet has 3: out of reach
+  options.max_passes = 4;
+  const ImproveStats stats = improve_mesh(fixture.mesh, *fixture.envelope, options);
+  REQUIRE(find_mesh_inconsistency(fixture.mesh) == "");
+  CHECK(all_tets_positive_on_doubles(fixture.mesh));
+  CHECK(stats.passes == 4);
+  CHECK(stats.polish_passes >= 1);
+  CHECK(stats.written_max_amips <= stats.passes_max_amips);
+  CHECK(stats.after.max_amips == stats.written_max_amips);
+  const TrackedSurface surface = tracked_surface(fixture.mesh, fixture.cube, *fixture.envelope);
+  CHECK(surface.inside);
+  CHECK(surface.ids.size() == 12);
+}
+
 TEST_CASE("improve: splits long edges and collapses short ones towards the target", "[improve][slow]") {
   Fixture fine;
   ImproveOptions coarse = options_with_threads(1);

@@ -25,8 +25,12 @@ Workspace::Workspace(Mesh& mesh_, const envelope::Envelope* envelope_, double ta
       envelope(envelope_),
       target_edge_length(target_edge_length_),
       stop_energy(stop_energy_),
-      sizing(mesh_.vertex_slots(), 1.0),
-      seed_(mesh_.vertex_slots(), kNoTet) {
+      sizing(mesh_.vertex_slots(), 1.0) {
+  reset_seeds();
+}
+
+void Workspace::reset_seeds() {
+  seed_.assign(mesh.vertex_slots(), kNoTet);
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
     if (!mesh.tet_alive(t)) continue;
     for (const Index v : mesh.tet(t)) {

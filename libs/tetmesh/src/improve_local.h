@@ -88,6 +88,8 @@ class Workspace {
   void note_tets(std::span<const Index> tets);
   /// Records new vertex v with refinement scale `size`; samples the field.
   void note_vertex(Index v, double size);
+  /// Finds a tet for every vertex again (after the mesh was replaced as a whole).
+  void reset_seeds();
 
  private:
   Index find_seed(Index v);

@@ -85,6 +85,11 @@ struct ImproveStats {
   std::size_t sizing_outside = 0;
   std::size_t sizing_clamped = 0;
   int passes = 0;
+  /// Passes without splits after the others ended above the stop energy;
+  /// the mesh ends as the best of them (or as the passes left it).
+  int polish_passes = 0;
+  /// The largest energy over the kWritten tets when the passes with splits ended.
+  double passes_max_amips = 0.0;
   QualitySummary before;
   QualitySummary after;
   /// The largest energy at the end over the kWritten tets (all tets when
