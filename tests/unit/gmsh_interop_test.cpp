@@ -52,12 +52,19 @@ void require_gmsh() {
   REQUIRE(found);
 }
 
-// A Python 3 that can import meshio: pyenv's python3 may shadow Debian's.
+// A Python 3 that can import meshio (pyenv's python3 may shadow Debian's), or the test fails
+// saying what to install.
 std::string python_with_meshio() {
-  for (const char* python : {"python3", "/usr/bin/python3"})
-    if (std::system((std::string(python) + " -c 'import meshio' > /dev/null 2>&1").c_str()) == 0)
-      return python;
-  return {};
+  std::string found;
+  for (const char* python : {"python3", "/usr/bin/python3"}) {
+    if (std::system((std::string(python) + " -c 'import meshio' > /dev/null 2>&1").c_str()) == 0) {
+      found = python;
+      break;
+    }
+  }
+  INFO("no python3 with meshio found: install python3-meshio (see the setup script)");
+  REQUIRE(!found.empty());
+  return found;
 }
 
 CommandResult gmsh(const std::string& arguments) { return run("gmsh -v 2 -nopopup " + arguments); }
@@ -184,8 +191,6 @@ TEST_CASE("we read the Medit files gmsh writes, and gmsh reads ours", "[gmsh]") 
 
 TEST_CASE("meshio loads the .vtu we write", "[gmsh]") {
   const std::string python = python_with_meshio();
-  INFO("no python3 with meshio found: install python3-meshio (see the setup script)");
-  REQUIRE(!python.empty());
   test::TempDir dir("meshio_vtu");
   const io::Registry registry = io::make_default_registry();
   const TetMesh grid = test::tet_io::kuhn_grid(3);
@@ -226,8 +231,6 @@ TEST_CASE("node data (sizing fields) goes both ways between us, meshio and gmsh"
   // A user makes a sizing field in Python: meshio writes it, we read it;
   // and meshio and gmsh read the node data we write.
   const std::string python = python_with_meshio();
-  INFO("no python3 with meshio found: install python3-meshio (see the setup script)");
-  REQUIRE(!python.empty());
   require_gmsh();
   test::TempDir dir("node_data_interop");
   const io::Registry registry = io::make_default_registry();
@@ -273,8 +276,6 @@ TEST_CASE("node data (sizing fields) goes both ways between us, meshio and gmsh"
 TEST_CASE("gmsh and meshio read the part labels tetrahedralize writes", "[gmsh][labels]") {
   require_gmsh();
   const std::string python = python_with_meshio();
-  INFO("no python3 with meshio found: install python3-meshio (see the setup script)");
-  REQUIRE(!python.empty());
   test::TempDir dir("gmsh_labels");
   const io::Registry registry = io::make_default_registry();
   // Two unit boxes touching on x = 1, one OBJ material each.
