@@ -28,6 +28,11 @@ TetMesh cube_tets();
 /// (i, j, k) has index (k * (cells + 1) + j) * (cells + 1) + i.
 TetMesh kuhn_grid(double lo, double step, int cells);
 
+/// tests/data (fixtures and fuzz regression files) and tests/tools (the npm tools the setup script
+/// installs) of the source tree.
+std::filesystem::path data_dir();
+std::filesystem::path tools_dir();
+
 /// A fresh empty directory for one test, removed when the object dies.
 class TempDir {
  public:

@@ -20,7 +20,7 @@ using namespace mr;
 
 namespace {
 
-const std::filesystem::path fuzz_data_dir = std::filesystem::path(MR_TEST_DATA_DIR) / "fuzz";
+const std::filesystem::path fuzz_data_dir = test::data_dir() / "fuzz";
 
 std::vector<std::filesystem::path> sorted_entries(const std::filesystem::path& dir) {
   std::vector<std::filesystem::path> entries;

@@ -384,7 +384,7 @@ TEST_CASE("meshrepair carries materials, their images and UVs from GLB and OBJ+M
     REQUIRE(corner_set(output, f) == corner_set(input, std::size_t(output.face_sources[f])));
   }
   CHECK(kept > 0);
-  const std::filesystem::path tools_dir = MR_TEST_TOOLS_DIR;
+  const std::filesystem::path tools_dir = test::tools_dir();
   const std::string command = "node '" + (tools_dir / "validate_gltf.mjs").string() + "' '" +
                               (dir / "out.glb").string() + "' > '" + (dir / "report.txt").string() + "' 2>&1";
   REQUIRE(std::system(command.c_str()) == 0);

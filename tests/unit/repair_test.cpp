@@ -499,7 +499,7 @@ TEST_CASE("meshrepair --remesh simplifies its input first unless told not to", "
 }
 
 TEST_CASE("meshrepair GLB output passes the Khronos validator", "[repair][e2e]") {
-  const std::filesystem::path tools_dir = MR_TEST_TOOLS_DIR;
+  const std::filesystem::path tools_dir = test::tools_dir();
   if (std::system("node --version > /dev/null 2>&1") != 0) FAIL("node is not on PATH");
   REQUIRE(std::filesystem::exists(tools_dir / "node_modules" / "gltf-validator"));
   const io::Registry registry = io::make_default_registry();

@@ -10,6 +10,11 @@
 
 namespace mr::test {
 
+// The folders come from this file's compile definitions only (tests/CMakeLists.txt): absolute
+// paths on a compiler's command line keep ccache from sharing objects between checkouts.
+std::filesystem::path data_dir() { return MR_TEST_DATA_DIR; }
+std::filesystem::path tools_dir() { return MR_TEST_TOOLS_DIR; }
+
 TriangleSoup cube_soup(double lo, double hi) {
   TriangleSoup soup;
   for (int i = 0; i < 8; ++i) soup.positions.emplace_back(i & 1 ? hi : lo, i & 2 ? hi : lo, i & 4 ? hi : lo);

@@ -272,7 +272,7 @@ TEST_CASE("a needle thinner than epsilon keeps positive volume", "[simplify]") {
   // meshrepair's peeled surface of a CAD strut (tests/data/README.md):
   // without the volume check it simplified to a 4-face tet of volume -1494.
   const TriangleSoup input = mr::io::read_surface(mr::io::make_default_registry(),
-                                                  std::string(MR_TEST_DATA_DIR) + "/thin_strut_peeled.obj");
+                                                  (mr::test::data_dir() / "thin_strut_peeled.obj").string());
   const mr::check::SurfaceReport before = mr::check::check_surface(input);
   REQUIRE(before.watertight());
   const auto result = simplify_in_envelope(input, {});

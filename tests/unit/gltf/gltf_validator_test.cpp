@@ -19,7 +19,7 @@ using namespace mr;
 
 namespace {
 
-const std::filesystem::path tools_dir = MR_TEST_TOOLS_DIR;
+const std::filesystem::path tools_dir = test::tools_dir();
 
 std::string read_text(const std::filesystem::path& path) {
   std::ifstream in(path);
