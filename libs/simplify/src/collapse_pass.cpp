@@ -20,17 +20,28 @@ struct Candidate {
   }
 };
 
+// Candidates cheapest first. Whether halfedges may leave a vertex at all
+// (MeshState::may_collapse_from) takes the vertex's valence in time and is
+// kept per vertex: a collapse changes the fans of v1 and of v0's neighbours
+// only, and requeue_around pushes every halfedge leaving those again. Asked
+// per halfedge instead, a vertex collapses gather thousands of faces on cost
+// its valence squared at each change (half of simplifying
+// manifold/Generic_Twin's input).
 class CollapseQueue {
  public:
-  explicit CollapseQueue(const MeshState& state) : state_(state), stamps_(state.mesh().n_halfedges(), 0) {}
+  explicit CollapseQueue(const MeshState& state)
+      : state_(state), stamps_(state.mesh().n_halfedges(), 0), movable_(state.mesh().n_vertices(), 0) {}
 
   void fill_initially() {
     const TriMesh& mesh = state_.mesh();
+    tbb::parallel_for(std::size_t(0), mesh.n_vertices(), [&](std::size_t i) {
+      movable_[i] = state_.may_collapse_from(TriMesh::VertexHandle(static_cast<int>(i)));
+    });
     const std::size_t n = mesh.n_halfedges();
     std::vector<double> costs(n, -1.0);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
       const TriMesh::HalfedgeHandle h(static_cast<int>(i));
-      if (state_.is_collapse_candidate(h)) costs[i] = state_.collapse_cost(h);
+      if (is_candidate(h)) costs[i] = state_.collapse_cost(h);
     });
     std::vector<Candidate> all;
     for (std::size_t i = 0; i < n; ++i)
@@ -38,10 +49,17 @@ class CollapseQueue {
     heap_ = Heap(std::greater<Candidate>(), std::move(all));
   }
 
+  /// Queues h again; its from-vertex's fan must be unchanged since that
+  /// vertex was last asked about (or was asked again through push_leaving).
   void push(TriMesh::HalfedgeHandle h) {
     const auto i = static_cast<std::size_t>(h.idx());
     ++stamps_[i];
-    if (state_.is_collapse_candidate(h)) heap_.push({state_.collapse_cost(h), std::uint32_t(i), stamps_[i]});
+    if (is_candidate(h)) heap_.push({state_.collapse_cost(h), std::uint32_t(i), stamps_[i]});
+  }
+  /// Queues every halfedge leaving v again, after v's fan changed.
+  void push_leaving(TriMesh::VertexHandle v) {
+    movable_[v.idx()] = state_.may_collapse_from(v);
+    for (auto h : state_.mesh().voh_range(v)) push(h);
   }
   void push_back(const Candidate& c) { heap_.push(c); }
 
@@ -50,8 +68,7 @@ class CollapseQueue {
     while (!heap_.empty()) {
       out = heap_.top();
       heap_.pop();
-      if (out.stamp == stamps_[out.halfedge] &&
-          state_.is_collapse_candidate(TriMesh::HalfedgeHandle(int(out.halfedge))))
+      if (out.stamp == stamps_[out.halfedge] && is_candidate(TriMesh::HalfedgeHandle(int(out.halfedge))))
         return true;
     }
     return false;
@@ -59,8 +76,13 @@ class CollapseQueue {
 
  private:
   using Heap = std::priority_queue<Candidate, std::vector<Candidate>, std::greater<Candidate>>;
+  bool is_candidate(TriMesh::HalfedgeHandle h) const {
+    return state_.halfedge_may_collapse(h) && movable_[state_.mesh().from_vertex_handle(h).idx()] != 0;
+  }
+
   const MeshState& state_;
   std::vector<std::uint32_t> stamps_;
+  std::vector<char> movable_;  ///< per vertex: may_collapse_from when last asked
   Heap heap_;
 };
 
@@ -103,8 +125,7 @@ bool meets_any(const std::vector<Eigen::AlignedBox3d>& boxes, const Eigen::Align
 
 void requeue_around(const TriMesh& mesh, CollapseQueue& queue,
                     const std::vector<TriMesh::VertexHandle>& support, TriMesh::VertexHandle v1) {
-  for (auto s : support)
-    for (auto h : mesh.voh_range(s)) queue.push(h);
+  for (auto s : support) queue.push_leaving(s);
   for (auto h : mesh.vih_range(v1)) queue.push(h);
 }
 

@@ -209,12 +209,14 @@ bool MeshState::same_copies_around(TriMesh::VertexHandle v) const {
   return true;
 }
 
-bool MeshState::is_collapse_candidate(TriMesh::HalfedgeHandle h) const {
+bool MeshState::may_collapse_from(TriMesh::VertexHandle v0) const {
+  return !locked_[v0.idx()] && same_copies_around(v0);
+}
+
+bool MeshState::halfedge_may_collapse(TriMesh::HalfedgeHandle h) const {
   if (mesh_.status(mesh_.edge_handle(h)).deleted()) return false;
   const auto v0 = mesh_.from_vertex_handle(h);
-  if (locked_[v0.idx()]) return false;
-  if (mesh_.is_boundary(v0) && !mesh_.is_boundary(mesh_.edge_handle(h))) return false;
-  return same_copies_around(v0);
+  return !mesh_.is_boundary(v0) || mesh_.is_boundary(mesh_.edge_handle(h));
 }
 
 double MeshState::collapse_cost(TriMesh::HalfedgeHandle h) const {

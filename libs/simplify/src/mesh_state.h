@@ -52,7 +52,14 @@ class MeshState {
   std::size_t face_count() const { return live_faces_ + kept_aside_.size(); }
 
   /// Whether halfedge h (v0 -> v1) may ever be collapsed, and at what cost.
-  bool is_collapse_candidate(TriMesh::HalfedgeHandle h) const;
+  bool is_collapse_candidate(TriMesh::HalfedgeHandle h) const {
+    return halfedge_may_collapse(h) && may_collapse_from(mesh_.from_vertex_handle(h));
+  }
+  /// The part of is_collapse_candidate that depends on v0 alone (it takes
+  /// v0's valence in time): asked once for all halfedges leaving v0.
+  bool may_collapse_from(TriMesh::VertexHandle v0) const;
+  /// The part of is_collapse_candidate that depends on the halfedge alone.
+  bool halfedge_may_collapse(TriMesh::HalfedgeHandle h) const;
   double collapse_cost(TriMesh::HalfedgeHandle h) const;
 
   /// Everything about collapsing h except the self-intersection test: locks,

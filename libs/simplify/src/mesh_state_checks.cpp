@@ -249,11 +249,31 @@ bool MeshState::collapse_stays_in_plane(TriMesh::HalfedgeHandle h, const std::ve
   return new_faces_within_old(old_faces, new_faces);
 }
 
+namespace {
+
+struct Box {
+  Vec3d lo, hi;
+  explicit Box(const Corners& c)
+      : lo(c[0].cwiseMin(c[1]).cwiseMin(c[2])), hi(c[0].cwiseMax(c[1]).cwiseMax(c[2])) {}
+  // Closed boxes that do not meet hold triangles that do not meet: an exact
+  // test on the doubles, cheaper than the orientation tests it spares.
+  bool meets(const Box& other) const {
+    return (lo.array() <= other.hi.array()).all() && (other.lo.array() <= hi.array()).all();
+  }
+};
+
+}  // namespace
+
 // New faces may not cross each other. A face of the rest of the surface may
 // be crossed by at most as many new faces as old faces crossed it: on a soup
 // that already intersects itself (CAD booleans, overlapping parts) the faces
 // around an existing crossing can still be simplified, while no face that
 // was apart from the region gets crossed, and no pair count grows.
+//
+// The grid is asked once for the box around all new faces (they share a
+// corner, so their boxes mostly overlap; one query per face took half of
+// openscad-nonmanifold-crash's clean-up), then each candidate is tested
+// against the new faces whose box it meets.
 template <class Replaced>
 bool MeshState::faces_apart(const std::vector<NewFace>& faces, const std::vector<Corners>& old_faces,
                             Replaced&& replaced) const {
@@ -263,36 +283,42 @@ bool MeshState::faces_apart(const std::vector<NewFace>& faces, const std::vector
   for (std::size_t i = 0; i < faces.size(); ++i)
     for (std::size_t j = i + 1; j < faces.size(); ++j)
       if (crosses(faces[i].corners, faces[j].corners)) return false;
-  std::vector<std::pair<std::uint32_t, Corners>> crossed;  // one entry per (new face, crossed face)
-  std::vector<std::uint32_t> candidates;
-  const auto n_mesh_faces = static_cast<std::uint32_t>(mesh_.n_faces());
-  for (const NewFace& face : faces) {
-    const Corners& a = face.corners;
-    grid_.query(a[0].cwiseMin(a[1]).cwiseMin(a[2]), a[0].cwiseMax(a[1]).cwiseMax(a[2]), candidates);
-    for (std::uint32_t id : candidates) {
-      Corners b;
-      if (id >= n_mesh_faces) {
-        b = kept_aside_[id - n_mesh_faces];
-      } else {
-        const TriMesh::FaceHandle f(static_cast<int>(id));
-        if (mesh_.status(f).deleted() || replaced(f)) continue;
-        b = corners(f);
-      }
-      if (collinear(b[0], b[1], b[2])) continue;  // as check_surface: degenerate faces are not counted
-      if (crosses(a, b)) crossed.emplace_back(id, b);
-    }
+  if (faces.empty()) return true;
+  std::vector<Box> boxes;
+  for (const NewFace& face : faces) boxes.emplace_back(face.corners);
+  Box around = boxes.front();
+  for (const Box& box : boxes) {
+    around.lo = around.lo.cwiseMin(box.lo);
+    around.hi = around.hi.cwiseMax(box.hi);
   }
-  std::sort(crossed.begin(), crossed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  for (std::size_t i = 0; i < crossed.size();) {
-    std::size_t j = i;
-    while (j < crossed.size() && crossed[j].first == crossed[i].first) ++j;
-    const Corners& b = crossed[i].second;
+  std::vector<std::uint32_t> candidates;
+  grid_.query(around.lo, around.hi, candidates);
+  const auto n_mesh_faces = static_cast<std::uint32_t>(mesh_.n_faces());
+  for (std::uint32_t id : candidates) {
+    Corners b;
+    if (id >= n_mesh_faces) {
+      b = kept_aside_[id - n_mesh_faces];
+    } else {
+      const TriMesh::FaceHandle f(static_cast<int>(id));
+      if (mesh_.status(f).deleted() || replaced(f)) continue;
+      b = corners(f);
+    }
+    const Box box(b);
+    std::size_t crossings = 0;
+    bool checked_collinear = false;
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      if (!boxes[i].meets(box)) continue;
+      // As check_surface: degenerate faces are not counted.
+      if (!checked_collinear && collinear(b[0], b[1], b[2])) break;
+      checked_collinear = true;
+      crossings += crosses(faces[i].corners, b);
+    }
+    if (crossings == 0) continue;
     const auto crossed_before =
         static_cast<std::size_t>(std::count_if(old_faces.begin(), old_faces.end(), [&](const Corners& old) {
           return !collinear(old[0], old[1], old[2]) && crosses(old, b);
         }));
-    if (j - i > crossed_before) return false;
-    i = j;
+    if (crossings > crossed_before) return false;
   }
   return true;
 }
