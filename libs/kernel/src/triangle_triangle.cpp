@@ -157,11 +157,50 @@ int count_shared_vertices(const Tri<P>& t1, const Tri<P>& t2) {
   return shared;
 }
 
+/// Triangles with exactly one common edge (a, b) and third corners c and d
+/// meet beyond that edge only when they lie in one plane with c and d on
+/// one side of it: one orient3d decides what the general test asks up to
+/// six for. Neighbouring faces are most of the pairs a self-intersection
+/// check sees, and on flat regions every one of those tests goes to exact
+/// arithmetic. False where a triangle is degenerate: the general test decides.
+template <class P>
+bool classify_on_common_edge(const Tri<P>& t1, const Tri<P>& t2, TriangleTriangleHit& hit) {
+  int common = 0, in1 = 0, in2 = 0;  // bit i: corner i is on the common edge
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (*t1[i] == *t2[j]) {
+        ++common;
+        in1 |= 1 << i;
+        in2 |= 1 << j;
+      }
+  if (common != 2 || in1 == 1 || in1 == 2 || in1 == 4 || in2 == 1 || in2 == 2 || in2 == 4) return false;
+  const int c = in1 == 3 ? 2 : in1 == 5 ? 1 : 0;
+  const int d = in2 == 3 ? 2 : in2 == 5 ? 1 : 0;
+  const P& a = *t1[(c + 1) % 3];
+  const P& b = *t1[(c + 2) % 3];
+  hit.shared_vertices = 2;
+  if (orient3d(a, b, *t1[c], *t2[d]) != 0) {
+    hit.kind = TriangleTriangleKind::shared_edge;
+    return true;
+  }
+  for (int axis = 2; axis >= 0; --axis) {
+    const int side_c = orient2d_projected(a, b, *t1[c], axis);
+    if (side_c == 0) continue;
+    const int side_d = orient2d_projected(a, b, *t2[d], axis);
+    if (side_d == 0) return false;
+    hit.kind = side_c == side_d ? TriangleTriangleKind::coplanar_overlap : TriangleTriangleKind::shared_edge;
+    return true;
+  }
+  return false;
+}
+
 template <class P>
 TriangleTriangleHit triangles_impl(const P& p1, const P& q1, const P& r1, const P& p2, const P& q2,
                                    const P& r2) {
   const Tri<P> t1 = {&p1, &q1, &r1}, t2 = {&p2, &q2, &r2};
   TriangleTriangleHit hit;
+  if (classify_on_common_edge(t1, t2, hit)) return hit;
+  hit = {};
   const std::array<int, 3> s1on2 = {orient3d(p2, q2, r2, p1), orient3d(p2, q2, r2, q1),
                                     orient3d(p2, q2, r2, r1)};
   if (all_same_strict_sign(s1on2)) return hit;
