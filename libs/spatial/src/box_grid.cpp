@@ -2,18 +2,30 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mr::spatial {
 namespace {
 
 constexpr std::int64_t kCellRange = std::int64_t(1) << 21;
 
+// The float at or below x (above, for `up`): a float box rounded outward
+// holds the double box.
+float rounded(double x, bool up) {
+  constexpr double largest = std::numeric_limits<float>::max();
+  if (x > largest) return up ? std::numeric_limits<float>::infinity() : std::numeric_limits<float>::max();
+  if (x < -largest) return up ? -std::numeric_limits<float>::max() : -std::numeric_limits<float>::infinity();
+  const auto f = static_cast<float>(x);
+  if (up) return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+  return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+
 }  // namespace
 
 BoxGrid::BoxGrid(const Vec3d& origin, double cell_size) : origin_(origin), cell_size_(cell_size) {}
 
-std::array<std::int64_t, 3> BoxGrid::cell_of(const Vec3d& p) const {
-  std::array<std::int64_t, 3> c{};
+BoxGrid::Cell BoxGrid::cell_of(const Vec3d& p) const {
+  Cell c{};
   for (int k = 0; k < 3; ++k) {
     const double x = std::floor((p[k] - origin_[k]) / cell_size_);
     c[k] = static_cast<std::int64_t>(std::clamp(x, 0.0, double(kCellRange - 1)));
@@ -48,7 +60,7 @@ void BoxGrid::insert(std::uint32_t face, const Vec3d& lo, const Vec3d& hi) {
   Box& box = boxes_[face];
   const std::int64_t cells = cells_spanned(lo, hi);
   live_entries_ += entries_of(cells, kMaxCellsPerFace) - entries_of(box.cells, kMaxCellsPerFace);
-  box = {lo, hi, cells};
+  box = {lo, hi, cells, cell_of(lo)};
   add_entries(face, box);
   // Rebuild once stale entries are the majority: each entry is then
   // inserted a bounded number of times on average.
@@ -62,11 +74,17 @@ void BoxGrid::add_entries(std::uint32_t face, const Box& box) {
     in_oversize_[face] = 1;
     return;
   }
-  const auto a = cell_of(box.lo);
-  const auto b = cell_of(box.hi);
+  Entry entry;
+  entry.id = face;
+  for (int k = 0; k < 3; ++k) {
+    entry.lo[k] = rounded(box.lo[k], false);
+    entry.hi[k] = rounded(box.hi[k], true);
+  }
+  const Cell& a = box.first;
+  const Cell b = cell_of(box.hi);
   for (std::int64_t x = a[0]; x <= b[0]; ++x)
     for (std::int64_t y = a[1]; y <= b[1]; ++y)
-      for (std::int64_t z = a[2]; z <= b[2]; ++z) cells_[key(x, y, z)].push_back(face);
+      for (std::int64_t z = a[2]; z <= b[2]; ++z) cells_[key(x, y, z)].push_back(entry);
   entries_ += box.cells;
 }
 
@@ -88,6 +106,7 @@ void BoxGrid::rebuild() {
     Box& box = boxes_[face];
     if (box.cells == 0) continue;
     box.cells = cells_spanned(box.lo, box.hi);
+    box.first = cell_of(box.lo);
     live_entries_ += entries_of(box.cells, kMaxCellsPerFace);
     add_entries(face, box);
   }
@@ -105,32 +124,33 @@ bool BoxGrid::overlaps(std::uint32_t face, const Vec3d& lo, const Vec3d& hi) con
 // Each face is taken from one cell only: the lowest cell that both its box
 // and the query box cover (faces spanning several cells are otherwise listed
 // once per cell, and sorting the repeats away took most of the query time).
-// Oversized faces come from their own list.
-void BoxGrid::append_overlapping(const std::vector<std::uint32_t>& faces,
-                                 const std::array<std::int64_t, 3>& cell,
-                                 const std::array<std::int64_t, 3>& query_first, const Vec3d& lo,
-                                 const Vec3d& hi, std::vector<std::uint32_t>& out) const {
-  for (const std::uint32_t face : faces) {
-    if (boxes_[face].cells > kMaxCellsPerFace || !overlaps(face, lo, hi)) continue;
-    const auto face_first = cell_of(boxes_[face].lo);
+// Oversized faces come from their own list. An entry's own box decides
+// first; a stale one (its face moved or erased since) may pass it, and then
+// the face's current box decides.
+void BoxGrid::append_overlapping(const std::vector<Entry>& entries, const Cell& cell, const Cell& query_first,
+                                 const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const {
+  for (const Entry& entry : entries) {
+    bool meets = true;
+    for (int k = 0; k < 3; ++k) meets = meets && double(entry.hi[k]) >= lo[k] && double(entry.lo[k]) <= hi[k];
+    if (!meets) continue;
+    const Box& box = boxes_[entry.id];
+    if (box.cells > kMaxCellsPerFace || !overlaps(entry.id, lo, hi)) continue;
     bool first_common_cell = true;
     for (int k = 0; k < 3; ++k)
-      first_common_cell = first_common_cell && std::max(face_first[k], query_first[k]) == cell[k];
-    if (first_common_cell) out.push_back(face);
+      first_common_cell = first_common_cell && std::max(box.first[k], query_first[k]) == cell[k];
+    if (first_common_cell) out.push_back(entry.id);
   }
 }
 
 // For query boxes larger than the occupied part of the grid.
-void BoxGrid::collect_from_all_cells(const std::array<std::int64_t, 3>& a,
-                                     const std::array<std::int64_t, 3>& b, const Vec3d& lo, const Vec3d& hi,
+void BoxGrid::collect_from_all_cells(const Cell& a, const Cell& b, const Vec3d& lo, const Vec3d& hi,
                                      std::vector<std::uint32_t>& out) const {
   const std::uint64_t mask = kCellRange - 1;
-  for (const auto& [cell, faces] : cells_) {
-    const std::array<std::int64_t, 3> c{std::int64_t(cell >> 42), std::int64_t((cell >> 21) & mask),
-                                        std::int64_t(cell & mask)};
+  for (const auto& [cell, entries] : cells_) {
+    const Cell c{std::int64_t(cell >> 42), std::int64_t((cell >> 21) & mask), std::int64_t(cell & mask)};
     bool inside = true;
     for (int k = 0; k < 3; ++k) inside = inside && c[k] >= a[k] && c[k] <= b[k];
-    if (inside) append_overlapping(faces, c, a, lo, hi, out);
+    if (inside) append_overlapping(entries, c, a, lo, hi, out);
   }
 }
 

@@ -32,26 +32,38 @@ class BoxGrid {
   // Faces spanning more cells than this go to a list every query visits.
   static constexpr std::int64_t kMaxCellsPerFace = 64;
 
+  using Cell = std::array<std::int64_t, 3>;
+
   struct Box {
     Vec3d lo, hi;
     std::int64_t cells = 0;  ///< cells the box spans; 0: not in the grid
+    Cell first{};            ///< the cell of lo
+  };
+
+  // A cell's entry: the id and its box as it was inserted, rounded outward
+  // to floats. Queries read the cell's entries in a row and look up the
+  // current box only for entries whose box meets the query's (reading every
+  // entry's current box, all over memory, took a fifth of meshrepair's
+  // clean-up on openscad-nonmanifold-crash).
+  struct Entry {
+    std::array<float, 3> lo, hi;
+    std::uint32_t id = 0;
   };
 
   std::int64_t cells_spanned(const Vec3d& lo, const Vec3d& hi) const;
   void add_entries(std::uint32_t face, const Box& box);
   void rebuild();
-  std::array<std::int64_t, 3> cell_of(const Vec3d& p) const;
+  Cell cell_of(const Vec3d& p) const;
   static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z);
   bool overlaps(std::uint32_t face, const Vec3d& lo, const Vec3d& hi) const;
-  void append_overlapping(const std::vector<std::uint32_t>& faces, const std::array<std::int64_t, 3>& cell,
-                          const std::array<std::int64_t, 3>& query_first, const Vec3d& lo, const Vec3d& hi,
-                          std::vector<std::uint32_t>& out) const;
-  void collect_from_all_cells(const std::array<std::int64_t, 3>& a, const std::array<std::int64_t, 3>& b,
-                              const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const;
+  void append_overlapping(const std::vector<Entry>& entries, const Cell& cell, const Cell& query_first,
+                          const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const;
+  void collect_from_all_cells(const Cell& a, const Cell& b, const Vec3d& lo, const Vec3d& hi,
+                              std::vector<std::uint32_t>& out) const;
 
   Vec3d origin_ = Vec3d::Zero();
   double cell_size_ = 1.0;
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+  std::unordered_map<std::uint64_t, std::vector<Entry>> cells_;
   std::vector<std::uint32_t> oversize_;
   std::vector<std::uint8_t> in_oversize_;
   std::vector<Box> boxes_;         ///< per face, its current box
