@@ -70,7 +70,8 @@ TEST_CASE("box grid queries agree with brute force through inserts, moves, erase
       grid.query(query.lo, query.hi, found);
       std::vector<std::uint32_t> expected;
       for (std::size_t i = 0; i < boxes.size(); ++i)
-        if (boxes[i].live && overlap(boxes[i], query.lo, query.hi)) expected.push_back(static_cast<std::uint32_t>(i));
+        if (boxes[i].live && overlap(boxes[i], query.lo, query.hi))
+          expected.push_back(static_cast<std::uint32_t>(i));
       // The grid may return more than the overlapping boxes (callers test
       // candidates against the geometry), but never repeats and never misses one.
       REQUIRE(std::is_sorted(found.begin(), found.end()));
