@@ -91,23 +91,26 @@ class Sweep {
   }
 
  private:
-  bool try_collapse(std::span<const Index> removed, Index u) {
+  // The vertices `removed` collapsed onto the first of `targets` that takes them.
+  bool try_collapse(std::span<const Index> removed, std::span<const Index> targets) {
     for (Index w : removed) {
       if (touched_[w] != 0) return false;
     }
     const std::vector<Index> star = union_of_stars(incidence_, removed);
-    std::vector<Index> corners;  // the vertices whose stars the collapse changes
-    for (Index t : star) corners.insert(corners.end(), mesh_.tet(t).begin(), mesh_.tet(t).end());
-    if (!collapse_vertices(mesh_, removed, u, star)) return false;
-    for (Index w : corners) touched_[w] = 1;
-    return true;
+    const StarBoundary boundary = star_boundary(mesh_, removed, star);
+    for (Index u : targets) {
+      std::vector<Index> corners;  // the vertices whose stars the collapse changes
+      for (Index t : star) corners.insert(corners.end(), mesh_.tet(t).begin(), mesh_.tet(t).end());
+      if (!collapse_vertices(mesh_, removed, u, star, boundary)) continue;
+      for (Index w : corners) touched_[w] = 1;
+      return true;
+    }
+    return false;
   }
 
   bool collapse_onto_neighbour(Index v) {
-    for (Index u : nearby_neighbours(mesh_, v, incidence_.of(v), max_distance_)) {
-      if (try_collapse(std::span<const Index>(&v, 1), u)) return true;
-    }
-    return false;
+    return try_collapse(std::span<const Index>(&v, 1),
+                        nearby_neighbours(mesh_, v, incidence_.of(v), max_distance_));
   }
 
   // Merges the whole knot around v into one of its points, a double one
@@ -123,7 +126,7 @@ class Sweep {
       for (Index w : cluster) {
         if (w != u) removed.push_back(w);
       }
-      if (try_collapse(removed, u)) return true;
+      if (try_collapse(removed, std::span<const Index>(&u, 1))) return true;
     }
     return false;
   }

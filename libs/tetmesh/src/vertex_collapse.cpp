@@ -72,36 +72,47 @@ void apply_moved_marks(Mesh& mesh, std::span<const Index> created, const std::ve
 
 }  // namespace
 
-bool collapse_vertices(Mesh& mesh, std::span<const Index> removed, Index u, std::span<const Index> star) {
-  std::deque<Ids> storage;
-  std::vector<CellTriangle> boundary;
-  std::vector<Index> outside;
+StarBoundary star_boundary(const Mesh& mesh, std::span<const Index> removed, std::span<const Index> star) {
+  // Membership in the star by binary search: the star of a cut point where
+  // many sheets cross has thousands of tets, and a linear search per face
+  // made each collapse tried there quadratic.
+  std::vector<Index> sorted;
+  if (!std::is_sorted(star.begin(), star.end())) {
+    sorted.assign(star.begin(), star.end());
+    std::sort(sorted.begin(), sorted.end());
+  }
+  const std::span<const Index> in_star = sorted.empty() ? star : std::span<const Index>(sorted);
+  StarBoundary boundary;
   for (Index t : star) {
     for (int k = 0; k < 4; ++k) {
       const Index n = mesh.neighbour(t, k);
+      if (n != kNoTet && std::binary_search(in_star.begin(), in_star.end(), n)) continue;  // inside the star
       const std::array<Index, 3> f = mesh.face_vertices(t, k);
-      const bool through_removed =
-          contains(removed, f[0]) || contains(removed, f[1]) || contains(removed, f[2]);
-      if (n == kNoTet && through_removed) {
-        // A hull face through a removed vertex vanishes; the cone's side
-        // faces replace it, on the same plane only if u is on that plane.
-        const int side =
-            orient3d(mesh.position(u), mesh.position(f[0]), mesh.position(f[1]), mesh.position(f[2]));
-        if (side != 0) return false;
+      if (n == kNoTet && (contains(removed, f[0]) || contains(removed, f[1]) || contains(removed, f[2]))) {
+        boundary.hull_faces.push_back(f);
         continue;
       }
-      if (n != kNoTet && contains(star, n)) continue;  // inside the star
       const auto ids = mesh.surface_ids(t, k);
-      const Ids* stored = ids.empty() ? nullptr : &storage.emplace_back(ids.begin(), ids.end());
-      boundary.push_back({f, stored});
-      if (n != kNoTet) outside.push_back(n);
+      const Ids* stored = ids.empty() ? nullptr : &boundary.storage.emplace_back(ids.begin(), ids.end());
+      boundary.faces.push_back({f, stored});
+      if (n != kNoTet) boundary.outside.push_back(n);
     }
   }
-  if (!sees_all(mesh, mesh.position(u), u, boundary)) return false;
+  return boundary;
+}
+
+bool collapse_vertices(Mesh& mesh, std::span<const Index> removed, Index u, std::span<const Index> star,
+                       const StarBoundary& boundary) {
+  // A hull face through a removed vertex vanishes; the cone's side faces
+  // replace it, on the same plane only if u is on that plane.
+  for (const std::array<Index, 3>& f : boundary.hull_faces)
+    if (orient3d(mesh.position(u), mesh.position(f[0]), mesh.position(f[1]), mesh.position(f[2])) != 0)
+      return false;
+  if (!sees_all(mesh, mesh.position(u), u, boundary.faces)) return false;
 
   const std::vector<MovedMark> moved = marks_through(mesh, removed, u, star);
   std::vector<ConeTet> tets;
-  cone(u, boundary, tets);
+  cone(u, boundary.faces, tets);
   for (Index t : star) mesh.remove_tet(t);
   std::vector<Index> created;
   for (const ConeTet& tet : tets) {
@@ -113,7 +124,7 @@ bool collapse_vertices(Mesh& mesh, std::span<const Index> removed, Index u, std:
   }
   for (Index v : removed) mesh.remove_vertex(v);
   std::vector<Index> to_connect = created;
-  to_connect.insert(to_connect.end(), outside.begin(), outside.end());
+  to_connect.insert(to_connect.end(), boundary.outside.begin(), boundary.outside.end());
   mesh.connect(to_connect);
   apply_moved_marks(mesh, created, moved);
   return true;
