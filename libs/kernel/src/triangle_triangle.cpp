@@ -13,6 +13,7 @@
 #include <mr/kernel/intersections.h>
 
 #include <array>
+#include <bit>
 #include <utility>
 
 namespace mr {
@@ -148,13 +149,24 @@ Shape coplanar_shape(const Tri<P>& t1, const Tri<P>& t2) {
   return touching ? contact : Shape::area;
 }
 
+/// The corners the two triangles have in common (exact equality): how many
+/// pairs are equal, and per triangle a bit per corner that has an equal one.
+struct CommonCorners {
+  int count = 0;
+  unsigned in1 = 0, in2 = 0;
+};
+
 template <class P>
-int count_shared_vertices(const Tri<P>& t1, const Tri<P>& t2) {
-  int shared = 0;
-  for (const P* a : t1) {
-    for (const P* b : t2) shared += *a == *b;
-  }
-  return shared;
+CommonCorners common_corners(const Tri<P>& t1, const Tri<P>& t2) {
+  CommonCorners common;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (*t1[i] == *t2[j]) {
+        ++common.count;
+        common.in1 |= 1u << i;
+        common.in2 |= 1u << j;
+      }
+  return common;
 }
 
 /// Triangles with exactly one common edge (a, b) and third corners c and d
@@ -164,21 +176,13 @@ int count_shared_vertices(const Tri<P>& t1, const Tri<P>& t2) {
 /// check sees, and on flat regions every one of those tests goes to exact
 /// arithmetic. False where a triangle is degenerate: the general test decides.
 template <class P>
-bool classify_on_common_edge(const Tri<P>& t1, const Tri<P>& t2, TriangleTriangleHit& hit) {
-  int common = 0, in1 = 0, in2 = 0;  // bit i: corner i is on the common edge
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (*t1[i] == *t2[j]) {
-        ++common;
-        in1 |= 1 << i;
-        in2 |= 1 << j;
-      }
-  if (common != 2 || in1 == 1 || in1 == 2 || in1 == 4 || in2 == 1 || in2 == 2 || in2 == 4) return false;
-  const int c = in1 == 3 ? 2 : in1 == 5 ? 1 : 0;
-  const int d = in2 == 3 ? 2 : in2 == 5 ? 1 : 0;
+bool classify_on_common_edge(const Tri<P>& t1, const Tri<P>& t2, const CommonCorners& common,
+                             TriangleTriangleHit& hit) {
+  if (common.count != 2 || std::popcount(common.in1) != 2 || std::popcount(common.in2) != 2) return false;
+  const int c = std::countr_zero(~common.in1 & 7u);  // the corners off the edge
+  const int d = std::countr_zero(~common.in2 & 7u);
   const P& a = *t1[(c + 1) % 3];
   const P& b = *t1[(c + 2) % 3];
-  hit.shared_vertices = 2;
   if (orient3d(a, b, *t1[c], *t2[d]) != 0) {
     hit.kind = TriangleTriangleKind::shared_edge;
     return true;
@@ -198,9 +202,10 @@ template <class P>
 TriangleTriangleHit triangles_impl(const P& p1, const P& q1, const P& r1, const P& p2, const P& q2,
                                    const P& r2) {
   const Tri<P> t1 = {&p1, &q1, &r1}, t2 = {&p2, &q2, &r2};
+  const CommonCorners common = common_corners(t1, t2);
   TriangleTriangleHit hit;
-  if (classify_on_common_edge(t1, t2, hit)) return hit;
-  hit = {};
+  hit.shared_vertices = common.count;
+  if (classify_on_common_edge(t1, t2, common, hit)) return hit;
   const std::array<int, 3> s1on2 = {orient3d(p2, q2, r2, p1), orient3d(p2, q2, r2, q1),
                                     orient3d(p2, q2, r2, r1)};
   if (all_same_strict_sign(s1on2)) return hit;
@@ -211,7 +216,6 @@ TriangleTriangleHit triangles_impl(const P& p1, const P& q1, const P& r1, const 
   // A degenerate triangle makes all its own plane tests zero; in that case
   // the projection chosen below throws.
   const Shape shape = coplanar ? coplanar_shape(t1, t2) : non_coplanar_shape(t1, t2, s1on2, s2on1);
-  hit.shared_vertices = count_shared_vertices(t1, t2);
   using K = TriangleTriangleKind;
   switch (shape) {
     case Shape::empty:

@@ -251,16 +251,10 @@ bool MeshState::collapse_stays_in_plane(TriMesh::HalfedgeHandle h, const std::ve
 
 namespace {
 
-struct Box {
-  Vec3d lo, hi;
-  explicit Box(const Corners& c)
-      : lo(c[0].cwiseMin(c[1]).cwiseMin(c[2])), hi(c[0].cwiseMax(c[1]).cwiseMax(c[2])) {}
-  // Closed boxes that do not meet hold triangles that do not meet: an exact
-  // test on the doubles, cheaper than the orientation tests it spares.
-  bool meets(const Box& other) const {
-    return (lo.array() <= other.hi.array()).all() && (other.lo.array() <= hi.array()).all();
-  }
-};
+Eigen::AlignedBox3d box_of(const Corners& c) {
+  Eigen::AlignedBox3d box(c[0]);
+  return box.extend(c[1]).extend(c[2]);
+}
 
 }  // namespace
 
@@ -284,15 +278,13 @@ bool MeshState::faces_apart(const std::vector<NewFace>& faces, const std::vector
     for (std::size_t j = i + 1; j < faces.size(); ++j)
       if (crosses(faces[i].corners, faces[j].corners)) return false;
   if (faces.empty()) return true;
-  std::vector<Box> boxes;
-  for (const NewFace& face : faces) boxes.emplace_back(face.corners);
-  Box around = boxes.front();
-  for (const Box& box : boxes) {
-    around.lo = around.lo.cwiseMin(box.lo);
-    around.hi = around.hi.cwiseMax(box.hi);
-  }
+  // Closed boxes that do not meet hold triangles that do not meet: an exact
+  // test on the doubles, cheaper than the orientation tests it spares.
+  std::vector<Eigen::AlignedBox3d> boxes;
+  Eigen::AlignedBox3d around;
+  for (const NewFace& face : faces) around.extend(boxes.emplace_back(box_of(face.corners)));
   std::vector<std::uint32_t> candidates;
-  grid_.query(around.lo, around.hi, candidates);
+  grid_.query(around.min(), around.max(), candidates);
   const auto n_mesh_faces = static_cast<std::uint32_t>(mesh_.n_faces());
   for (std::uint32_t id : candidates) {
     Corners b;
@@ -303,11 +295,11 @@ bool MeshState::faces_apart(const std::vector<NewFace>& faces, const std::vector
       if (mesh_.status(f).deleted() || replaced(f)) continue;
       b = corners(f);
     }
-    const Box box(b);
+    const Eigen::AlignedBox3d box = box_of(b);
     std::size_t crossings = 0;
     bool checked_collinear = false;
     for (std::size_t i = 0; i < faces.size(); ++i) {
-      if (!boxes[i].meets(box)) continue;
+      if (!boxes[i].intersects(box)) continue;
       // As check_surface: degenerate faces are not counted.
       if (!checked_collinear && collinear(b[0], b[1], b[2])) break;
       checked_collinear = true;

@@ -98,9 +98,9 @@ class Sweep {
     }
     const std::vector<Index> star = union_of_stars(incidence_, removed);
     const StarBoundary boundary = star_boundary(mesh_, removed, star);
+    std::vector<Index> corners;  // the vertices whose stars the collapse changes
+    for (Index t : star) corners.insert(corners.end(), mesh_.tet(t).begin(), mesh_.tet(t).end());
     for (Index u : targets) {
-      std::vector<Index> corners;  // the vertices whose stars the collapse changes
-      for (Index t : star) corners.insert(corners.end(), mesh_.tet(t).begin(), mesh_.tet(t).end());
       if (!collapse_vertices(mesh_, removed, u, star, boundary)) continue;
       for (Index w : corners) touched_[w] = 1;
       return true;

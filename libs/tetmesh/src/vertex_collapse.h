@@ -12,9 +12,8 @@
 #include <array>
 #include <cstdint>
 #include <deque>
-#include <vector>
-
 #include <span>
+#include <vector>
 
 namespace mr::tetmesh::detail {
 
