@@ -5,6 +5,7 @@
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
 
+#include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 
 #include <tbb/global_control.h>
@@ -191,6 +192,28 @@ TEST_CASE("a .vdb without a float grid is an input error", "[vdb]") {
   } catch (const InputError& e) {
     CHECK(e.path() == (dir / "int.vdb").string());
     CHECK(e.problem().find("float") != std::string::npos);
+  }
+}
+
+TEST_CASE("a level set with an active tile is refused before it is meshed", "[vdb]") {
+  // A level set keeps its narrow band of voxels active; an active tile
+  // would be meshed on every side where the sign changes.
+  openvdb::initialize();
+  test::TempDir dir("vdb_active_tile");
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(3.0f);
+  grid->setGridClass(openvdb::GRID_LEVEL_SET);
+  grid->setName("surface");
+  grid->tree().addTile(/*level=*/1, openvdb::Coord(0, 0, 0), -3.0f, /*active=*/true);
+  {
+    std::ofstream out(dir / "tile.vdb", std::ios::binary);
+    openvdb::io::Stream(out).write(openvdb::GridCPtrVec{grid});
+  }
+  const io::Registry registry = io::make_default_registry();
+  try {
+    io::read_surface(registry, dir / "tile.vdb");
+    FAIL("a level set with an active tile was meshed");
+  } catch (const InputError& e) {
+    CHECK(e.problem().find("active tiles") != std::string::npos);
   }
 }
 
