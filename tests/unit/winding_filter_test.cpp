@@ -1,11 +1,13 @@
-// Stage 6 on meshes built in code: the filter of an open tracked surface
-// asks the input triangles it embeds, and the tracked surface only near
-// the places where it strayed from them.
+// Stage 6 on meshes built in code: the winding number of an open tracked
+// surface carried from tet to tet by crossings, or asked of the input away
+// from where the mesh moved it; a closed input with triangles left out
+// decided per region.
 
 #include "test_support.h"
 
 #include <mr/tetmesh/convert.h>
 #include <mr/tetmesh/mesh_check.h>
+#include <mr/tetmesh/open_surface_winding.h>
 #include <mr/tetmesh/winding_filter.h>
 
 #include <catch2/catch.hpp>
@@ -71,7 +73,117 @@ TriangleSoup tracked_faces(const Mesh& mesh, const TriangleSoup& input) {
   return tracked;
 }
 
+// Moves the grid vertex at the centre of the box's bottom, (0.5, 0.5, 0),
+// down by 0.01: the tracked surface strays from the input there.
+void move_bottom_centre_down(Mesh& mesh) {
+  const Index bottom_centre = (2 * (kCells + 1) + 4) * (kCells + 1) + 4;
+  REQUIRE(mesh.position(bottom_centre).approx == Vec3d(0.5, 0.5, 0.0));
+  mesh.position(bottom_centre) = HybridPoint(Vec3d(0.5, 0.5, -0.01));
+}
+
+// Per triangle of a soup made by mark_box, the face it marks.
+std::vector<FaceRef> marked_faces(const Mesh& mesh, std::size_t triangles) {
+  std::vector<FaceRef> origins(triangles, FaceRef{kNoTet, 0});
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    for (int k = 0; k < 4; ++k) {
+      for (const std::uint32_t id : mesh.surface_ids(t, k)) {
+        if (origins[id].tet == kNoTet) origins[id] = {t, k};
+      }
+    }
+  }
+  return origins;
+}
+
+// How far `winding` (per tet slot) is at most from the winding number of
+// `surface` at the live tets' centroids, summed triangle by triangle. The
+// trees' far-field expansions are good to a few thousandths here; a wrong
+// crossing count would be off by one.
+double largest_error(const Mesh& mesh, const std::vector<double>& winding, const TriangleSoup& surface) {
+  double largest = 0.0;
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (mesh.tet_alive(t))
+      largest =
+          std::max(largest, std::abs(winding[t] - winding_number_exact(surface, tet_centroid(mesh, t))));
+  }
+  return largest;
+}
+constexpr double kTreeError = 0.01;
+
+// The tracked surface of a box marked by mark_box, its winding numbers
+// carried by crossings, and every tet's own.
+struct CarriedAndAsked {
+  TriangleSoup surface;
+  std::vector<double> carried;
+  TetClassification asked;
+  OpenWindingStats stats;
+};
+CarriedAndAsked carry_and_ask(const Mesh& mesh, const TriangleSoup& input) {
+  CarriedAndAsked out;
+  out.surface = tracked_faces(mesh, input);
+  out.carried =
+      open_surface_winding(mesh, out.surface, marked_faces(mesh, out.surface.triangles.size()), out.stats);
+  out.asked = classify_tets(mesh, WindingNumberTree(out.surface), WindingRule::absolute);
+  return out;
+}
+
 }  // namespace
+
+TEST_CASE("winding filter: an open surface's winding number carried from tet to tet by crossings",
+          "[tetmesh][filter]") {
+  Mesh mesh = from_tet_mesh(test::kuhn_grid(kLo, kStep, kCells));
+  TriangleSoup input = mark_box(mesh);
+  REQUIRE(input.triangles.size() == 5 * 4 * 4 * 2);
+
+  SECTION("embedded exactly: the number every tet's own query gives") {
+    const auto [surface, carried, all, stats] = carry_and_ask(mesh, input);
+    CHECK(stats.cap_triangles == 14);  // the rim of the open top: 16 grid edges, closed by 14 triangles
+    // Segments that pass beside the face between their tets, or through an edge.
+    CHECK(stats.full_crossing_tests < mesh.num_tets() / 100);
+    CHECK(stats.direct_queries >= 1);  // the first tet
+    CHECK(stats.direct_queries < mesh.num_tets() / 100);
+    CHECK(largest_error(mesh, carried, surface) < kTreeError);
+    const TetClassification classes = classify_by_winding(mesh, carried, WindingRule::absolute);
+    CHECK(classes.keep == all.keep);
+    // The open box keeps the tets inside it: (4 x 4 x 4 cells) x 6.
+    CHECK(classes.kept == 4 * 4 * 4 * 6);
+  }
+
+  SECTION("a vertex moved off the bottom: still the tracked surface's number") {
+    move_bottom_centre_down(mesh);
+    const auto [surface, carried, all, stats] = carry_and_ask(mesh, input);
+    CHECK(largest_error(mesh, carried, surface) < kTreeError);
+    CHECK(classify_by_winding(mesh, carried, WindingRule::absolute).keep == all.keep);
+  }
+
+  SECTION("the same surface twice (multiplicity 2) and once reversed (winding -1)") {
+    TriangleSoup twice = tracked_faces(mesh, input);
+    const std::size_t n = twice.triangles.size();
+    std::vector<FaceRef> origins = marked_faces(mesh, n);
+    for (std::size_t i = 0; i < n; ++i) {
+      twice.triangles.push_back(twice.triangles[i]);
+      origins.push_back(origins[i]);
+    }
+    OpenWindingStats stats;
+    const WindingNumberTree tree(twice);
+    const std::vector<double> carried = open_surface_winding(mesh, twice, origins, stats);
+    CHECK(stats.cap_triangles == 28);  // two loops
+    CHECK(largest_error(mesh, carried, twice) < 2 * kTreeError);
+
+    TriangleSoup reversed = tracked_faces(mesh, input);
+    for (Triangle& t : reversed.triangles) std::swap(t[1], t[2]);
+    const WindingNumberTree reversed_tree(reversed);
+    const std::vector<double> negative = open_surface_winding(mesh, reversed, marked_faces(mesh, n), stats);
+    CHECK(largest_error(mesh, negative, reversed) < kTreeError);
+    CHECK(*std::min_element(negative.begin(), negative.end()) < -0.9);
+  }
+
+  SECTION("no surface: zero everywhere") {
+    OpenWindingStats stats;
+    const std::vector<double> carried = open_surface_winding(mesh, TriangleSoup{}, {}, stats);
+    CHECK(stats.cap_triangles == 0);
+    CHECK(std::all_of(carried.begin(), carried.end(), [](double w) { return w == 0.0; }));
+  }
+}
 
 TEST_CASE("winding filter: an open surface is asked of the input away from where the mesh moved it",
           "[tetmesh][filter]") {
@@ -96,9 +208,7 @@ TEST_CASE("winding filter: an open surface is asked of the input away from where
   }
 
   SECTION("a moved vertex: tets near it ask the tracked surface, the others agree with it") {
-    const Index bottom_centre = (2 * (kCells + 1) + 4) * (kCells + 1) + 4;  // (0.5, 0.5, 0)
-    REQUIRE(mesh.position(bottom_centre).approx == Vec3d(0.5, 0.5, 0.0));
-    mesh.position(bottom_centre) = HybridPoint(Vec3d(0.5, 0.5, -0.01));
+    move_bottom_centre_down(mesh);
     const std::vector<double> offsets = tracked_surface_offsets(mesh, input);
     CHECK(*std::max_element(offsets.begin(), offsets.end()) == Approx(0.01));
     CHECK(std::count(offsets.begin(), offsets.end(), 0.0) ==

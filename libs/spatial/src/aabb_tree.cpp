@@ -168,6 +168,33 @@ bool AabbTree::one_triangle_near_all(std::span<const Vec3d> points, double r_sq)
   return found;
 }
 
+void AabbTree::triangles_in_box(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const {
+  const auto meets = [&](const Vec3d& box_lo, const Vec3d& box_hi) {
+    return (box_lo.array() <= hi.array()).all() && (lo.array() <= box_hi.array()).all();
+  };
+  const auto node_meets = [&](const Node& node) {
+    return meets(Vec3d(node.lo[0], node.lo[1], node.lo[2]), Vec3d(node.hi[0], node.hi[1], node.hi[2]));
+  };
+  if (nodes_.empty() || !node_meets(nodes_[0])) return;
+  std::uint32_t stack[kMaxStack];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const std::uint32_t index = stack[--top];
+    const Node& node = nodes_[index];
+    if (node.count != 0) {
+      for (std::uint32_t slot = node.first_or_right; slot < node.first_or_right + node.count; ++slot) {
+        const Vec3d* c = &corners_[3 * std::size_t{slot}];
+        if (meets(c[0].cwiseMin(c[1]).cwiseMin(c[2]), c[0].cwiseMax(c[1]).cwiseMax(c[2])))
+          out.push_back(triangle_ids_[slot]);
+      }
+      continue;
+    }
+    for (const std::uint32_t child : {index + 1, node.first_or_right})
+      if (node_meets(nodes_[child])) stack[top++] = child;
+  }
+}
+
 bool AabbTree::any_within(const Vec3d& p, double r) const {
   if (!(r >= 0.0)) return false;
   const double r_sq = r * r;

@@ -19,14 +19,14 @@ constexpr double kMargin = 0.25;
 }  // namespace
 
 FilterPreview preview_filter(const Mesh& mesh, const TriangleSoup& surface, std::span<const char> left_out) {
-  const TriangleSoup tracked = tracked_surface(mesh, {}, surface, Multiplicity::as_chain);
+  std::vector<FaceRef> origins;
+  const TriangleSoup tracked = tracked_surface(mesh, {}, surface, Multiplicity::as_chain, &origins);
+  const std::size_t boundary_edges = unbalanced_edges(tracked).size();
   // The rule does not matter here: only the winding numbers are read.
-  const WindingRule any = WindingRule::absolute;
-  if (unbalanced_edges(tracked).empty())
-    return {classify_regions(mesh, WindingNumberTree(tracked), any).winding, true};
-  const std::vector<double> offsets = tracked_surface_offsets(mesh, surface);
-  return {classify_tets_near_input(mesh, WindingNumberTree(tracked), surface, left_out, offsets, any).winding,
-          false};
+  if (boundary_edges == 0)
+    return {classify_regions(mesh, WindingNumberTree(tracked), WindingRule::absolute).winding, true};
+  OpenSurfaceStats stats;
+  return {open_tracked_winding(mesh, tracked, origins, boundary_edges, surface, left_out, stats), false};
 }
 
 std::vector<char> fates_from_winding(const Mesh& mesh, std::span<const double> winding) {

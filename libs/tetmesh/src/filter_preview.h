@@ -18,9 +18,8 @@ struct FilterPreview {
   /// The tracked surface is a cycle: `winding` is an integer per region,
   /// exactly what the filter decides, and improvement, which never moves a
   /// tet across a tracked face, cannot change it. Otherwise it is the
-  /// filter's per-tet number (classify_tets_near_input, triangles with
-  /// left_out[i] != 0 skipped), which improvement changes by little as it
-  /// moves tracked faces within the envelope.
+  /// filter's per-tet number (open_tracked_winding), which improvement
+  /// changes by little as it moves tracked faces within the envelope.
   bool by_region = false;
 };
 

@@ -38,12 +38,12 @@ std::size_t drop_unimproved(TetClassification& classes, std::span<const char> fa
 // region. So does a closed input whose tracked surface is open only where
 // triangles were left out, asked of the input itself, with the tets around
 // those triangles deciding each for itself. Otherwise the winding number
-// varies inside a region, so every tet is queried, most of them of the
-// input triangles the surface embeds (winding_filter.h).
+// varies inside a region: every tet gets its own (open_tracked_winding).
 TetClassification classify_tracked(Mesh& mesh, const TriangleSoup& surface, std::span<const char> left_out,
                                    std::span<const char> fate, double epsilon,
                                    const envelope::Envelope& envelope, WindingRule rule, StageTimer& timer) {
-  const TriangleSoup tracked = tracked_surface(mesh, {}, surface, Multiplicity::as_chain);
+  std::vector<FaceRef> origins;
+  const TriangleSoup tracked = tracked_surface(mesh, {}, surface, Multiplicity::as_chain, &origins);
   const std::vector<std::array<Index, 2>> open_edges = unbalanced_edges(tracked);
   timer.count("closed_surface", open_edges.empty() ? 1 : 0);
   if (open_edges.empty()) {
@@ -84,10 +84,15 @@ TetClassification classify_tracked(Mesh& mesh, const TriangleSoup& surface, std:
     timer.count("barrier_faces_outside", refined.faces_outside);
     return classes;
   }
-  std::size_t near_queries = 0;
-  TetClassification classes = classify_tets_near_input(mesh, WindingNumberTree(tracked), surface, left_out,
-                                                       offsets, rule, &near_queries);
-  timer.count("near_surface_queries", near_queries);
+  OpenSurfaceStats open;
+  const std::vector<double> winding =
+      open_tracked_winding(mesh, tracked, origins, open_edges.size(), surface, left_out, open);
+  TetClassification classes = classify_by_winding(mesh, winding, rule);
+  timer.count("by_crossings", open.by_crossings ? 1 : 0);
+  timer.count("cap_triangles", open.crossings.cap_triangles);
+  timer.count("direct_queries", open.crossings.direct_queries);
+  timer.count("full_crossing_tests", open.crossings.full_crossing_tests);
+  timer.count("near_surface_queries", open.near_queries);
   timer.count("unimproved_tets_dropped", drop_unimproved(classes, fate));
   return classes;
 }

@@ -87,14 +87,15 @@ int face_direction(const Mesh& mesh, Index t, int k, const TriangleSoup& input, 
 }  // namespace
 
 TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const TriangleSoup& input,
-                             Multiplicity multiplicity) {
+                             Multiplicity multiplicity, std::vector<FaceRef>* origins) {
   const auto kept = [&](Index t) {
     return t != kNoTet && mesh.tet_alive(t) && (keep.empty() || keep[t] != 0);
   };
   TriangleSoup surface;
   std::vector<double> votes;
   std::vector<Index> used(mesh.vertex_slots(), kNoVertex);
-  const auto emit = [&](const std::array<Index, 3>& f, double vote) {
+  const auto emit = [&](const std::array<Index, 3>& f, double vote, FaceRef origin) {
+    if (origins != nullptr) origins->push_back(origin);
     Triangle out;
     for (int i = 0; i < 3; ++i) {
       if (used[f[i]] == kNoVertex) {
@@ -118,7 +119,7 @@ TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const
       if (multiplicity == Multiplicity::once) {
         const int direction = face_direction(mesh, t, k, input, ids.front(), normal);
         if (direction < 0) std::swap(f[1], f[2]);
-        emit(f, std::max(0.0, direction * normal.dot(input_normal(input, ids.front()))));
+        emit(f, std::max(0.0, direction * normal.dot(input_normal(input, ids.front()))), {t, k});
         continue;
       }
       // As a chain: each input triangle on the face counts +1 or -1 by how
@@ -133,7 +134,8 @@ TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const
       }
       if (net == 0) continue;
       if (net < 0) std::swap(f[1], f[2]);
-      for (int copy = 0; copy < std::abs(net); ++copy) emit(f, agreement / static_cast<double>(ids.size()));
+      for (int copy = 0; copy < std::abs(net); ++copy)
+        emit(f, agreement / static_cast<double>(ids.size()), {t, k});
     }
   }
   // The normal test above is only a guess for faces that moved away from

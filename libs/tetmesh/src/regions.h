@@ -5,6 +5,7 @@
 #include <mr/core/tet_mesh.h>
 #include <mr/core/triangle_soup.h>
 #include <mr/tetmesh/mesh.h>
+#include <mr/tetmesh/open_surface_winding.h>
 #include <mr/tetmesh/winding_filter.h>
 
 #include <array>
@@ -28,9 +29,11 @@ Vec3d input_normal(const TriangleSoup& input, std::uint32_t id);
 /// it, +1 or -1 by orientation: faces where they cancel are left out and
 /// the others repeated, so the soup is the integer chain the input makes
 /// (a cycle for a closed input) and its winding number jumps correctly.
+/// `origins`, when given, receives per triangle the face (tet, face) it is.
 enum class Multiplicity { once, as_chain };
 TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const TriangleSoup& input,
-                             Multiplicity multiplicity = Multiplicity::once);
+                             Multiplicity multiplicity = Multiplicity::once,
+                             std::vector<FaceRef>* origins = nullptr);
 
 /// Whether every edge of `surface` (vertices compared by index) is run along
 /// as often one way as the other. The surface is then a closed cycle: its

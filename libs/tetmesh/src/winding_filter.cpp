@@ -172,6 +172,19 @@ TetClassification classify_tets_near_input(const Mesh& mesh, const WindingNumber
   });
 }
 
+std::vector<double> open_tracked_winding(const Mesh& mesh, const TriangleSoup& tracked,
+                                         std::span<const FaceRef> origins, std::size_t boundary_edges,
+                                         const TriangleSoup& input, std::span<const char> left_out,
+                                         OpenSurfaceStats& stats) {
+  const auto input_triangles = static_cast<std::size_t>(std::count(left_out.begin(), left_out.end(), 0));
+  stats.by_crossings = boundary_edges <= input_triangles;
+  if (stats.by_crossings) return open_surface_winding(mesh, tracked, origins, stats.crossings);
+  return classify_tets_near_input(mesh, WindingNumberTree(tracked), input, left_out,
+                                  tracked_surface_offsets(mesh, input), WindingRule::absolute,
+                                  &stats.near_queries)
+      .winding;
+}
+
 std::vector<char> tets_near(const Mesh& mesh, const TriangleSoup& triangles) {
   std::vector<char> near(mesh.tet_slots(), 0);
   if (triangles.triangles.empty()) return near;

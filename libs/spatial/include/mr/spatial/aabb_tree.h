@@ -54,6 +54,11 @@ class AabbTree {
   /// The triangles (soup indices, increasing) with a point at distance <= r from p.
   std::vector<std::uint32_t> triangles_within(const Vec3d& p, double r) const;
 
+  /// Appends to `out` the triangles (soup indices, in tree order) whose
+  /// bounding box meets the closed box [lo, hi]. Boxes are compared exactly,
+  /// so every triangle that meets the box is among them.
+  void triangles_in_box(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const;
+
   /// True when some triangle has a point at distance <= r from p. Stops at
   /// the first such triangle.
   bool any_within(const Vec3d& p, double r) const;

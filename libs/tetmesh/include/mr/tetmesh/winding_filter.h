@@ -6,6 +6,7 @@
 #include <mr/core/tet_mesh.h>
 #include <mr/envelope/envelope.h>
 #include <mr/tetmesh/mesh.h>
+#include <mr/tetmesh/open_surface_winding.h>
 #include <mr/tetmesh/options.h>
 #include <mr/winding_number/winding_number.h>
 
@@ -63,6 +64,25 @@ TetClassification classify_tets_near_input(const Mesh& mesh, const WindingNumber
                                            const TriangleSoup& input, std::span<const char> left_out,
                                            std::span<const double> offsets, WindingRule rule,
                                            std::size_t* near_queries = nullptr);
+/// Per tet slot, the winding number at the centroids of the tracked surface
+/// `tracked` (a chain whose triangle i is the mesh face origins[i]) when it
+/// is no cycle. Carried from tet to tet by counting crossings
+/// (open_surface_winding.h) when its boundary has no more edges than `input`
+/// has triangles not left out; else asked tet by tet of the input and, near
+/// where the tracked faces strayed, of `tracked` (classify_tets_near_input).
+/// The triangles that cap the boundary are asked at every tet: a boundary of
+/// many short edges (trimesh/soup, 100 large crossing triangles cut into
+/// 31k boundary edges) made that cost more than asking the input.
+struct OpenSurfaceStats {
+  bool by_crossings = false;
+  OpenWindingStats crossings;
+  std::size_t near_queries = 0;
+};
+std::vector<double> open_tracked_winding(const Mesh& mesh, const TriangleSoup& tracked,
+                                         std::span<const FaceRef> origins, std::size_t boundary_edges,
+                                         const TriangleSoup& input, std::span<const char> left_out,
+                                         OpenSurfaceStats& stats);
+
 /// Per tet slot, 1 for the live tets that may meet a triangle of
 /// `triangles` (their bounding sphere, doubled, reaches one).
 std::vector<char> tets_near(const Mesh& mesh, const TriangleSoup& triangles);
