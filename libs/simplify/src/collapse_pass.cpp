@@ -86,6 +86,17 @@ class CollapseQueue {
   Heap heap_;
 };
 
+// Whether no vertex of v0's region (v0 and its one-ring) is marked with
+// `batch_id`. Stops at the first marked one: a vertex that gathered
+// thousands of faces is asked again and again while its neighbours are busy.
+bool region_free(const TriMesh& mesh, TriMesh::VertexHandle v0, const std::vector<std::uint32_t>& marks,
+                 std::uint32_t batch_id) {
+  if (marks[v0.idx()] == batch_id) return false;
+  for (auto v : mesh.vv_range(v0))
+    if (marks[v.idx()] == batch_id) return false;
+  return true;
+}
+
 // Pops up to kBatchSize candidates whose regions (v0 and its one-ring) are
 // pairwise disjoint; the others are pushed back after the batch.
 std::vector<Candidate> pop_batch(const TriMesh& mesh, CollapseQueue& queue, std::vector<std::uint32_t>& marks,
@@ -96,9 +107,7 @@ std::vector<Candidate> pop_batch(const TriMesh& mesh, CollapseQueue& queue, std:
   while (batch.size() < kBatchSize && deferred.size() < 4 * kBatchSize && queue.pop(c)) {
     const TriMesh::HalfedgeHandle h(static_cast<int>(c.halfedge));
     const auto v0 = mesh.from_vertex_handle(h);
-    bool free = marks[v0.idx()] != batch_id;
-    for (auto v : mesh.vv_range(v0)) free = free && marks[v.idx()] != batch_id;
-    if (!free) {
+    if (!region_free(mesh, v0, marks, batch_id)) {
       deferred.push_back(c);
       continue;
     }
