@@ -1,5 +1,7 @@
 #include <mr/tetmesh/open_surface_winding.h>
 
+#include "regions.h"
+
 #include <mr/core/errors.h>
 #include <mr/kernel/predicates.h>
 #include <mr/spatial/aabb_tree.h>
@@ -13,49 +15,22 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <utility>
 
 namespace mr::tetmesh {
 namespace {
 
-using Edge = std::pair<Index, Index>;
-
-// The edges of `surface` left over when each counts +1 one way and -1 the
-// other: its boundary, each edge repeated by its multiplicity and
-// directed, sorted.
-std::vector<Edge> boundary_edges(const TriangleSoup& surface) {
-  std::vector<std::pair<Edge, int>> uses;
-  uses.reserve(3 * surface.triangles.size());
-  for (const Triangle& t : surface.triangles) {
-    for (int i = 0; i < 3; ++i) {
-      const Index a = t[i], b = t[(i + 1) % 3];
-      if (a != b) uses.push_back({{std::min(a, b), std::max(a, b)}, a < b ? 1 : -1});
-    }
-  }
-  std::sort(uses.begin(), uses.end());
-  std::vector<Edge> edges;
-  for (std::size_t i = 0; i < uses.size();) {
-    int net = 0;
-    std::size_t j = i;
-    for (; j < uses.size() && uses[j].first == uses[i].first; ++j) net += uses[j].second;
-    const auto [lo, hi] = uses[i].first;
-    for (int copy = 0; copy < std::abs(net); ++copy) edges.push_back(net > 0 ? Edge{lo, hi} : Edge{hi, lo});
-    i = j;
-  }
-  std::sort(edges.begin(), edges.end());
-  return edges;
-}
+using Edge = std::array<Index, 2>;
 
 // The boundary as closed loops of vertices (edge i runs from loop[i] to
 // loop[i + 1], the last back to the first). A boundary is a cycle: every
 // vertex has as many edges in as out, so a walk along unused edges can
 // only stop where it started.
 std::vector<std::vector<Index>> boundary_loops(const TriangleSoup& surface) {
-  const std::vector<Edge> edges = boundary_edges(surface);
+  const std::vector<Edge> edges = detail::chain_boundary(surface);
   std::vector<char> used(edges.size(), 0);
   const auto unused_from = [&](Index v) -> std::size_t {
     auto it = std::lower_bound(edges.begin(), edges.end(), Edge{v, 0});
-    for (; it != edges.end() && it->first == v; ++it)
+    for (; it != edges.end() && (*it)[0] == v; ++it)
       if (used[static_cast<std::size_t>(it - edges.begin())] == 0)
         return static_cast<std::size_t>(it - edges.begin());
     throw UsageError("the boundary of a chain is not a cycle");
@@ -63,11 +38,11 @@ std::vector<std::vector<Index>> boundary_loops(const TriangleSoup& surface) {
   std::vector<std::vector<Index>> loops;
   for (std::size_t first = 0; first < edges.size(); ++first) {
     if (used[first] != 0) continue;
-    std::vector<Index> loop{edges[first].first};
+    std::vector<Index> loop{edges[first][0]};
     for (std::size_t e = first;; e = unused_from(loop.back())) {
       used[e] = 1;
-      if (edges[e].second == loop.front()) break;
-      loop.push_back(edges[e].second);
+      if (edges[e][1] == loop.front()) break;
+      loop.push_back(edges[e][1]);
     }
     loops.push_back(std::move(loop));
   }
@@ -261,23 +236,13 @@ int jump_through_face(const Mesh& mesh, Index t, Index u, const Vec3d& a, const 
   return -copies[4 * t + k] - *capped;
 }
 
-}  // namespace
-
-std::vector<double> open_surface_winding(const Mesh& mesh, const TriangleSoup& surface,
-                                         std::span<const FaceRef> origins, OpenWindingStats& stats) {
-  std::vector<Index> slots;
-  for (Index t = 0; t < mesh.tet_slots(); ++t)
-    if (mesh.tet_alive(t)) slots.push_back(t);
-  std::vector<Vec3d> centroids(slots.size());
-  tbb::parallel_for(std::size_t{0}, slots.size(),
-                    [&](std::size_t i) { centroids[i] = tet_centroid(mesh, slots[i]); });
-
-  const TriangleSoup cap_soup = cap(surface);
-  stats.cap_triangles = cap_soup.triangles.size();
-  const std::vector<double> capped = WindingNumberTree(cap_soup).evaluate(centroids);
-
-  // The integer part, carried from each tet's parent in the forest.
-  const Forest forest = spanning_forest(mesh, slots);
+// Per live tet (positions into `slots`), what the winding number of
+// surface - cap gains from its parent in the forest; kUnknown for the roots
+// and where no count decides it.
+std::vector<int> jumps_from_parents(const Mesh& mesh, const TriangleSoup& surface,
+                                    std::span<const FaceRef> origins, const std::vector<Index>& slots,
+                                    const std::vector<Vec3d>& centroids, const Forest& forest,
+                                    const TriangleSoup& cap_soup, OpenWindingStats& stats) {
   const CrossingCounter cap_crossings(cap_soup);
   const std::vector<int> copies = face_copies(mesh, surface, origins);
   const std::vector<char> inside = centroids_inside(mesh, slots, centroids);
@@ -300,19 +265,38 @@ std::vector<double> open_surface_winding(const Mesh& mesh, const TriangleSoup& s
       std::count_if(forest.parent.begin(), forest.parent.end(), [&](std::uint32_t p) { return p != kRoot; }));
   stats.full_crossing_tests -=
       static_cast<std::size_t>(std::count_if(jump.begin(), jump.end(), [](int j) { return j != kUnknown; }));
-  if (stats.full_crossing_tests > 0) {
-    const CrossingCounter surface_crossings(surface);
-    for_children([&](std::uint32_t p, std::size_t i, std::vector<std::uint32_t>& scratch) {
-      if (jump[i] != kUnknown) return;
-      const std::optional<int> crossed = surface_crossings.count(centroids[p], centroids[i], scratch);
-      const std::optional<int> capped =
-          crossed ? cap_crossings.count(centroids[p], centroids[i], scratch) : std::nullopt;
-      if (capped) jump[i] = *crossed - *capped;
-    });
-  }
+  if (stats.full_crossing_tests == 0) return jump;
+  const CrossingCounter surface_crossings(surface);
+  for_children([&](std::uint32_t p, std::size_t i, std::vector<std::uint32_t>& scratch) {
+    if (jump[i] != kUnknown) return;
+    const std::optional<int> crossed = surface_crossings.count(centroids[p], centroids[i], scratch);
+    const std::optional<int> cap_crossed =
+        crossed ? cap_crossings.count(centroids[p], centroids[i], scratch) : std::nullopt;
+    if (cap_crossed) jump[i] = *crossed - *cap_crossed;
+  });
+  return jump;
+}
+
+}  // namespace
+
+std::vector<double> open_surface_winding(const Mesh& mesh, const TriangleSoup& surface,
+                                         std::span<const FaceRef> origins, OpenWindingStats& stats) {
+  std::vector<Index> slots;
+  for (Index t = 0; t < mesh.tet_slots(); ++t)
+    if (mesh.tet_alive(t)) slots.push_back(t);
+  std::vector<Vec3d> centroids(slots.size());
+  tbb::parallel_for(std::size_t{0}, slots.size(),
+                    [&](std::size_t i) { centroids[i] = tet_centroid(mesh, slots[i]); });
+
+  const TriangleSoup cap_soup = cap(surface);
+  stats.cap_triangles = cap_soup.triangles.size();
+  const std::vector<double> capped = WindingNumberTree(cap_soup).evaluate(centroids);
+  const Forest forest = spanning_forest(mesh, slots);
+  const std::vector<int> jump =
+      jumps_from_parents(mesh, surface, origins, slots, centroids, forest, cap_soup, stats);
 
   // Where no count reached, the surface itself, rounded: w_S - w_D is an
-  // integer there.
+  // integer there. Elsewhere the integer is the parent's plus the jump.
   std::vector<std::uint32_t> direct;
   std::vector<Vec3d> direct_points;
   for (std::uint32_t i = 0; i < slots.size(); ++i) {

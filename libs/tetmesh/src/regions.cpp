@@ -146,7 +146,7 @@ TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const
   return surface;
 }
 
-std::vector<std::array<Index, 2>> unbalanced_edges(const TriangleSoup& surface) {
+std::vector<std::array<Index, 2>> chain_boundary(const TriangleSoup& surface) {
   // +1 for each use of edge (lo, hi) from lo to hi, -1 the other way. An
   // edge from a vertex to itself (a triangle with two corners welded, as
   // snapping makes) is no edge: it bounds nothing.
@@ -160,15 +160,27 @@ std::vector<std::array<Index, 2>> unbalanced_edges(const TriangleSoup& surface) 
     }
   }
   std::sort(uses.begin(), uses.end());
-  std::vector<std::array<Index, 2>> unbalanced;
+  std::vector<std::array<Index, 2>> boundary;
   for (std::size_t i = 0; i < uses.size();) {
-    int sum = 0;
+    int net = 0;
     std::size_t j = i;
-    for (; j < uses.size() && uses[j].first == uses[i].first; ++j) sum += uses[j].second;
-    if (sum != 0) unbalanced.push_back(uses[i].first);
+    for (; j < uses.size() && uses[j].first == uses[i].first; ++j) net += uses[j].second;
+    const auto [lo, hi] = uses[i].first;
+    for (int copy = 0; copy < std::abs(net); ++copy)
+      boundary.push_back(net > 0 ? std::array<Index, 2>{lo, hi} : std::array<Index, 2>{hi, lo});
     i = j;
   }
-  return unbalanced;
+  std::sort(boundary.begin(), boundary.end());
+  return boundary;
+}
+
+std::vector<std::array<Index, 2>> unbalanced_edges(const TriangleSoup& surface) {
+  std::vector<std::array<Index, 2>> edges = chain_boundary(surface);
+  for (auto& e : edges)
+    if (e[0] > e[1]) std::swap(e[0], e[1]);
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
 }
 
 bool is_cycle(const TriangleSoup& surface) { return unbalanced_edges(surface).empty(); }

@@ -39,8 +39,12 @@ TriangleSoup tracked_surface(const Mesh& mesh, std::span<const char> keep, const
 /// as often one way as the other. The surface is then a closed cycle: its
 /// winding number is an integer, constant on each region it bounds.
 bool is_cycle(const TriangleSoup& surface);
+/// The boundary of `surface` as a chain: each edge counted +1 one way and -1
+/// the other, the ones left over directed by their sign and repeated by
+/// their multiplicity, sorted. Empty for a cycle.
+std::vector<std::array<Index, 2>> chain_boundary(const TriangleSoup& surface);
 /// The edges (vertex pairs, lower index first) of `surface` not run along
-/// as often one way as the other: empty for a cycle.
+/// as often one way as the other: chain_boundary's, each once.
 std::vector<std::array<Index, 2>> unbalanced_edges(const TriangleSoup& surface);
 /// How many edges of `surface` in `edges` have their midpoint farther than
 /// `radius` from every triangle of `triangles` (all of them when there is none).
