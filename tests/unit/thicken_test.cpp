@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <utility>
 
 using namespace mr;
 
@@ -76,4 +77,47 @@ TEST_CASE("tetrahedralize: an input enclosing no volume gives its sheets thicken
   CHECK(report.volume > 0.8 * 6 * epsilon);
   CHECK(report.volume < 1.05 * 6 * epsilon);
   CHECK(check::one_sided_distance(result.tracked_surface, sheets).max <= epsilon);
+}
+
+TEST_CASE("fatten_sheets: slivers and points become solids at least twice the radius wide", "[thicken]") {
+  TriangleSoup slivers;
+  slivers.positions = {{0, 0, 0}, {1, 0, 0}, {1e3, 1e3, 1e3}, {3, 3, 3}};
+  slivers.triangles = {{0, 1, 2}, {3, 3, 3}};  // a sliver, and a triangle that is a point
+  const double radius = 0.5;
+  const TriangleSoup fat = fatten_sheets(slivers, radius);
+  // One prism (the point has no normal) and a box per distinct edge: 3 for
+  // the sliver, 1 for the point (its three edges are one).
+  REQUIRE(fat.triangles.size() == 8 + 4 * 12);
+  // The pieces are closed and outward, so their volumes add up: the prism's,
+  // and each box's (edge length + 2 radius) * (2 radius)^2.
+  double volume = (slivers.positions[1] - slivers.positions[0])
+                      .cross(slivers.positions[2] - slivers.positions[0])
+                      .norm() *
+                  radius;  // the area, times a thickness of 2 radius
+  for (const auto& [u, v] : {std::pair{0, 1}, std::pair{1, 2}, std::pair{0, 2}, std::pair{3, 3}})
+    volume += ((slivers.positions[v] - slivers.positions[u]).norm() + 2 * radius) * 4 * radius * radius;
+  CHECK(std::abs(test::enclosed_volume(fat) - volume) <
+        1e-8 * volume);  // the volume sums cancel products of 1e9
+  CHECK(check::one_sided_distance(fat, slivers).max <= std::sqrt(3.0) * radius * (1 + 1e-9));
+}
+
+TEST_CASE("tetrahedralize: sheets far thinner than epsilon are fattened when thickening leaves nothing",
+          "[thicken][tetrahedralize]") {
+  // The meshrepair fuzzer's find: two unit triangles and an unused vertex
+  // at 1e25 make epsilon 1.7e22, and their prisms, a unit wide, are
+  // flattened by simplification and merged by snapping.
+  TriangleSoup sheets;
+  sheets.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1e25, 1e25, 1e25}};
+  sheets.triangles = {{0, 1, 2}, {0, 1, 3}};
+  tetmesh::PipelineOptions options;
+  options.improve = false;
+  const tetmesh::PipelineResult result = tetmesh::tetrahedralize(sheets, options);
+  CHECK(filter_count(result, "thickened_sheets") == 1);
+  CHECK(filter_count(result, "fattened_sheets") == 1);
+  const check::TetReport report = check::check_tets(result.mesh);
+  CHECK(report.valid());
+  CHECK(report.boundary.closed());
+  const double epsilon = result.parameters.epsilon;
+  CHECK(report.volume > 0);
+  CHECK(check::one_sided_distance(result.tracked_surface, sheets).max <= 0.56 * epsilon);
 }

@@ -1,6 +1,9 @@
 #include <mr/core/thicken.h>
 
+#include <algorithm>
 #include <array>
+#include <set>
+#include <utility>
 
 namespace mr {
 namespace {
@@ -22,7 +25,52 @@ void add_prism(const std::array<Vec3d, 3>& corner, const Vec3d& offset, Triangle
   }
 }
 
+/// The parallelepiped origin + [0,1] e0 + [0,1] e1 + [0,1] e2, oriented
+/// outward when (e0 x e1) . e2 > 0.
+void add_box(const Vec3d& origin, const Vec3d& e0, const Vec3d& e1, const Vec3d& e2, TriangleSoup& out) {
+  const auto first = static_cast<Index>(out.positions.size());
+  for (int corner = 0; corner < 8; ++corner)  // bit k of corner: e_k added
+    out.positions.push_back(origin + double(corner & 1) * e0 + double((corner >> 1) & 1) * e1 +
+                            double((corner >> 2) & 1) * e2);
+  static constexpr std::array<std::array<Index, 3>, 12> faces{{{0, 2, 1},
+                                                               {1, 2, 3},
+                                                               {4, 5, 6},
+                                                               {5, 7, 6},
+                                                               {0, 1, 5},
+                                                               {0, 5, 4},
+                                                               {2, 6, 7},
+                                                               {2, 7, 3},
+                                                               {0, 4, 6},
+                                                               {0, 6, 2},
+                                                               {1, 3, 7},
+                                                               {1, 7, 5}}};
+  for (const auto& f : faces) out.triangles.push_back({first + f[0], first + f[1], first + f[2]});
+}
+
+/// A box around the segment ab, `radius` from its line and past its ends.
+void add_edge_box(const Vec3d& a, const Vec3d& b, double radius, TriangleSoup& out) {
+  Vec3d along = b - a;
+  const double length = along.norm();
+  along = length > 0.0 ? Vec3d(along / length) : Vec3d::UnitX();
+  // Any direction across the edge: the axis least along it, made perpendicular.
+  Eigen::Index axis = 0;
+  along.cwiseAbs().minCoeff(&axis);
+  const Vec3d across = along.cross(Vec3d::Unit(axis)).normalized();
+  const Vec3d up = along.cross(across);  // (along x across) . up > 0
+  add_box(a - radius * (along + across + up), (length + 2 * radius) * along, 2 * radius * across,
+          2 * radius * up, out);
+}
+
 }  // namespace
+
+TriangleSoup fatten_sheets(const TriangleSoup& soup, double radius) {
+  TriangleSoup out = thicken_sheets(soup, radius);
+  std::set<std::pair<Index, Index>> edges;
+  for (const Triangle& t : soup.triangles)
+    for (int i = 0; i < 3; ++i) edges.emplace(std::minmax(t[i], t[(i + 1) % 3]));
+  for (const auto& [u, v] : edges) add_edge_box(soup.positions[u], soup.positions[v], radius, out);
+  return out;
+}
 
 TriangleSoup thicken_sheets(const TriangleSoup& soup, double half_thickness) {
   TriangleSoup out;

@@ -8,6 +8,7 @@
 
 #include "draco_codec_detail.h"
 #include "draco_declared_sizes.h"
+#include "draco_trial_decode.h"
 
 #include <mr/core/errors.h>
 
@@ -31,6 +32,7 @@ std::unique_ptr<draco::Mesh> decode_mesh(std::string_view bytes, const std::stri
     return InputError(source, "not a valid Draco mesh: " + why);
   };
   check_draco_declared_sizes(bytes, source);
+  trial_decode_draco(bytes, source);
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
   draco::Decoder decoder;

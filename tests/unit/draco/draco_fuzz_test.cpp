@@ -11,6 +11,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstring>
+#include <limits>
 #include <random>
 
 using namespace mr;
@@ -190,4 +192,40 @@ TEST_CASE("a Draco mesh claiming more faces than its bytes can hold is refused b
   } catch (const InputError& error) {
     CHECK_THAT(error.what(), !Catch::Contains("claims"));
   }
+}
+
+TEST_CASE("a Draco mesh that keeps the decoder busy is refused after its CPU limit", "[draco][fuzz]") {
+  // Draco's portable texture-coordinate prediction reads its number of
+  // orientations as an unbounded int32 and decodes that many bits: set to
+  // 2^31 - 1, a few hundred bytes kept the decoder busy for 9 s (fuzzer
+  // find). The field's place depends on everything before it, so every
+  // 32-bit word that could be a count is raised in turn; the one that is
+  // must end in the limit's message, any other in a soup or an InputError.
+  TriangleSoup grid = make_grid(12, 10, 0.3);
+  for (const Vec3d& p : grid.positions) grid.uvs.emplace_back(float(p.x() / 12), float(p.y() / 10));
+  io::DracoOptions options;
+  options.speed = 0;  // edgebreaker with the mesh predictions, uvs among them
+  const plugins::DracoEncoded valid = plugins::encode_draco(grid, options);
+  REQUIRE(decode_outcome(valid.bytes) == 0);
+  int words = 0, stopped = 0;
+  for (std::size_t at = 0; at + 4 <= valid.bytes.size(); ++at) {
+    std::int32_t word = 0;
+    std::memcpy(&word, valid.bytes.data() + at, 4);
+    if (word < 1 || word > static_cast<std::int32_t>(grid.num_vertices())) continue;
+    ++words;
+    std::vector<char> bytes = valid.bytes;
+    const std::int32_t huge = std::numeric_limits<std::int32_t>::max();
+    std::memcpy(bytes.data() + at, &huge, 4);
+    try {
+      const TriangleSoup soup =
+          plugins::decode_draco(std::string_view(bytes.data(), bytes.size()), "busy.drc");
+      CHECK(find_soup_inconsistency(soup).empty());
+    } catch (const InputError& error) {
+      CHECK(error.path() == "busy.drc");
+      if (std::string(error.what()).find("did not finish within 1.0 s of CPU time") != std::string::npos)
+        ++stopped;
+    }
+  }
+  INFO(words << " words raised");
+  CHECK(stopped == 1);
 }

@@ -15,4 +15,13 @@ namespace mr {
 /// carried over.
 TriangleSoup thicken_sheets(const TriangleSoup& soup, double half_thickness);
 
+/// A solid at least 2 `radius` wide everywhere around every triangle, also
+/// where thicken_sheets' prisms are thin: slivers, zero-area triangles, and
+/// whole inputs far smaller than `radius`. Each triangle becomes its prism
+/// of half-thickness `radius`, each of its edges a box around it, `radius`
+/// from the edge's line on four sides and past both its ends (12
+/// triangles): every point is within sqrt(3) `radius` of the input. The
+/// pieces overlap; their union is what they describe.
+TriangleSoup fatten_sheets(const TriangleSoup& soup, double radius);
+
 }  // namespace mr
