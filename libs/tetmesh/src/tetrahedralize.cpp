@@ -477,7 +477,7 @@ constexpr SheetSolid kThickened{"the input encloses no volume: meshing its sheet
 // made large): simplification flattens them, snapping merges their corners.
 // Fattened pieces are at least epsilon/2 wide in every direction, and the
 // run on them uses epsilon/8, which can flatten nothing that wide: within
-// sqrt(3)/4 + 1/8 < 0.56 epsilon of the input.
+// 5/16 sqrt(3) + 1/8 < 0.67 epsilon of the input.
 constexpr SheetSolid kFattened{
     "the thickened sheets enclose no volume either: meshing them fattened to epsilon/4", "fattened_sheets",
     fatten_sheets, 0.25, 0.125};

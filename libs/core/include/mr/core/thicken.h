@@ -17,10 +17,12 @@ TriangleSoup thicken_sheets(const TriangleSoup& soup, double half_thickness);
 
 /// A solid at least 2 `radius` wide everywhere around every triangle, also
 /// where thicken_sheets' prisms are thin: slivers, zero-area triangles, and
-/// whole inputs far smaller than `radius`. Each triangle becomes its prism
-/// of half-thickness `radius`, each of its edges a box around it, `radius`
-/// from the edge's line on four sides and past both its ends (12
-/// triangles): every point is within sqrt(3) `radius` of the input. The
+/// whole inputs far smaller than `radius`. Corners closer than `radius`/4
+/// (in one cell of a grid that wide) are merged first; then each triangle
+/// becomes its prism of half-thickness `radius`, each of its edges a box
+/// around it, `radius` from the edge's line on four sides and past both its
+/// ends (12 triangles). The solid holds every point within `radius`/2 of
+/// the input, and each of its points is within 5/4 sqrt(3) `radius`. The
 /// pieces overlap; their union is what they describe.
 TriangleSoup fatten_sheets(const TriangleSoup& soup, double radius);
 
