@@ -131,15 +131,33 @@ std::vector<std::uint8_t> keep_input_triangles(const TriangleSoup& input, const 
   return frozen;
 }
 
+// The manifold fix edits a copy of the tets; the copy is dropped once its
+// boundary is peeled, before the clean-up needs memory of its own.
+void peel_manifold_boundary(const TetMesh& mesh, std::span<const std::uint8_t> inside,
+                            const envelope::Envelope* envelope, bool input_closed,
+                            const RepairOptions& options, RepairResult& result) {
+  TetMesh work;
+  work.positions = mesh.positions;
+  work.tets = mesh.tets;
+  {
+    StageClock clock(result, "manifold");
+    ManifoldFixOptions fix;
+    fix.max_move = kMoveFraction * options.epsilon;
+    fix.collar_width = input_closed ? kCollarFraction * options.epsilon : 0.0;
+    fix.max_rounds = options.max_manifold_rounds;
+    result.manifold = make_boundary_manifold(work, inside, envelope, fix);
+  }
+  StageClock clock(result, "peel");
+  result.surface = extract_boundary(work);
+  result.peeled_faces = result.surface.triangles.size();
+}
+
 }  // namespace
 
 RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::uint8_t> inside,
                                       const TriangleSoup& input, const RepairOptions& options) {
   check_arguments(mesh, inside, input, options);
   RepairResult result;
-  TetMesh work;
-  work.positions = mesh.positions;
-  work.tets = mesh.tets;
   const bool input_closed = is_closed(input);  // welds the input: once
   std::unique_ptr<envelope::Envelope> envelope;
   if (!input.triangles.empty()) {
@@ -147,19 +165,7 @@ RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::
     envelope_options.epsilon = options.epsilon;
     envelope = envelope::make_envelope(input, envelope_options);
   }
-  {
-    StageClock clock(result, "manifold");
-    ManifoldFixOptions fix;
-    fix.max_move = kMoveFraction * options.epsilon;
-    fix.collar_width = input_closed ? kCollarFraction * options.epsilon : 0.0;
-    fix.max_rounds = options.max_manifold_rounds;
-    result.manifold = make_boundary_manifold(work, inside, envelope.get(), fix);
-  }
-  {
-    StageClock clock(result, "peel");
-    result.surface = extract_boundary(work);
-    result.peeled_faces = result.surface.triangles.size();
-  }
+  peel_manifold_boundary(mesh, inside, envelope.get(), input_closed, options, result);
   std::vector<std::uint8_t> frozen;
   if (options.keep_input_triangles && !input.triangles.empty()) {
     StageClock clock(result, "keep");

@@ -151,6 +151,7 @@ std::size_t collapse_edges(MeshState& state, std::size_t target_faces) {
   for (std::uint32_t batch_id = 1; state.face_count() > target_faces; ++batch_id) {
     const std::vector<Candidate> batch = pop_batch(mesh, queue, marks, batch_id);
     if (batch.empty()) break;
+    state.bound_caches();
     // Every check on the surface before the batch, in parallel; the regions
     // are disjoint, so only whether new faces cross others can change, and
     // only near a collapse made before in the batch: asked again there.

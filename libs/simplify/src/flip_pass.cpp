@@ -11,6 +11,7 @@ namespace {
 std::size_t flip_sweep(MeshState& state) {
   TriMesh& mesh = state.mesh();
   const std::size_t n = mesh.n_edges();
+  state.bound_caches();
   std::vector<std::uint8_t> improves(n, 0);
   tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
     improves[i] = state.flip_improves_locally(TriMesh::EdgeHandle(static_cast<int>(i)));

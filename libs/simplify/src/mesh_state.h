@@ -18,6 +18,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -68,6 +69,10 @@ class MeshState {
   /// No face after the collapse meets another improperly (exact).
   bool collapse_keeps_faces_apart(TriMesh::HalfedgeHandle h) const;
   void collapse(TriMesh::HalfedgeHandle h);
+  /// Between batches of checks (none running): drops the older generation of
+  /// cached envelope verdicts when the newer one has grown past its bound.
+  /// Only time depends on it: a verdict dropped is computed again.
+  void bound_caches();
 
   /// The flip of edge e raises the smallest angle of its two faces and
   /// passes the local checks (as for collapses).
@@ -170,7 +175,12 @@ class MeshState {
   // candidate is checked again every time its neighbourhood changes, mostly
   // with the same new faces. The verdict is a function of the sorted corners
   // alone, so which thread stores it first does not matter (determinism).
-  mutable tbb::concurrent_unordered_map<SortedCorners, bool, SortedCornersHash> envelope_verdicts_;
+  // Two generations bound the memory (bound_caches): trimesh/cycloidal's
+  // clean-up asked about 4 million faces, 450 MB of one ever-growing map.
+  using Verdicts = tbb::concurrent_unordered_map<SortedCorners, bool, SortedCornersHash>;
+  mutable Verdicts envelope_verdicts_;        // stored since the last generation change
+  mutable Verdicts older_envelope_verdicts_;  // the generation before, still asked
+  std::optional<bool> known_envelope_verdict(const SortedCorners& key) const;
   spatial::BoxGrid grid_;
   std::vector<Quadric> quadrics_;
   std::vector<Vec3d> carried_positions_;                // removed vertices

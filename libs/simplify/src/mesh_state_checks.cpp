@@ -198,12 +198,28 @@ bool MeshState::full_envelope_test(const Corners& c) const {
   return envelope_->is_inside(c[0], c[1], c[2]) || fine_envelope_->is_inside(c[0], c[1], c[2]);
 }
 
+std::optional<bool> MeshState::known_envelope_verdict(const SortedCorners& key) const {
+  if (const auto known = envelope_verdicts_.find(key); known != envelope_verdicts_.end())
+    return known->second;
+  if (const auto known = older_envelope_verdicts_.find(key); known != older_envelope_verdicts_.end())
+    return known->second;
+  return std::nullopt;
+}
+
+void MeshState::bound_caches() {
+  // About 120 bytes an entry: at most two generations of 2^19, some 130 MB.
+  constexpr std::size_t kVerdictsPerGeneration = std::size_t(1) << 19;
+  if (envelope_verdicts_.size() < kVerdictsPerGeneration) return;
+  older_envelope_verdicts_.swap(envelope_verdicts_);
+  envelope_verdicts_.clear();
+}
+
 bool MeshState::inside_envelope(const std::vector<NewFace>& faces) const {
   std::vector<SortedCorners> unknown;
   for (const NewFace& face : faces) {
     const SortedCorners key = sorted_corners(face.corners);
-    if (const auto known = envelope_verdicts_.find(key); known != envelope_verdicts_.end()) {
-      if (!known->second) return false;
+    if (const std::optional<bool> known = known_envelope_verdict(key)) {
+      if (!*known) return false;
     } else if (quick_envelope_refusal(corners_of(key))) {
       envelope_verdicts_.emplace(key, false);
       return false;
