@@ -103,11 +103,11 @@ TEST_CASE("fatten_sheets: slivers and points become solids at least twice the ra
 
 TEST_CASE("tetrahedralize: sheets far thinner than epsilon are fattened when thickening leaves nothing",
           "[thicken][tetrahedralize]") {
-  // The meshrepair fuzzer's find: two unit triangles and an unused vertex
-  // at 1e25 make epsilon 1.7e22, and their prisms, a unit wide, are
-  // flattened by simplification and merged by snapping.
+  // The meshrepair fuzzer's find: a unit triangle and a sliver 1e25 long
+  // make epsilon 1.7e22; the prisms, a unit wide, are flattened by
+  // simplification and their corners merged by snapping.
   TriangleSoup sheets;
-  sheets.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1e25, 1e25, 1e25}};
+  sheets.positions = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1e25, 1e25, 1e25}};
   sheets.triangles = {{0, 1, 2}, {0, 1, 3}};
   tetmesh::PipelineOptions options;
   options.improve = false;
@@ -120,4 +120,41 @@ TEST_CASE("tetrahedralize: sheets far thinner than epsilon are fattened when thi
   const double epsilon = result.parameters.epsilon;
   CHECK(report.volume > 0);
   CHECK(check::one_sided_distance(result.tracked_surface, sheets).max <= 0.67 * epsilon);
+}
+
+TEST_CASE("cell_solid: the cells a triangle meets, as one closed solid", "[thicken]") {
+  TriangleSoup triangle;
+  triangle.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  triangle.triangles = {{0, 1, 2}};
+  const double cell = 0.5;
+  const TriangleSoup solid = cell_solid(triangle, cell);
+  // Cells are counted from the input's box, so only the layer above z = 0;
+  // in the plane, the six cells of [0, 1.5]^2 that reach the triangle (two
+  // at its corners (1, 0) and (0, 1), one at (0.5, 0.5) on its long edge):
+  // a staircase whose outer squares are 24, two triangles each.
+  CHECK(solid.triangles.size() == 48);
+  CHECK(std::abs(test::enclosed_volume(solid) - 6 * cell * cell * cell) < 1e-12);
+  CHECK(check::one_sided_distance(solid, triangle).max <= std::sqrt(3.0) * cell);
+  CHECK(cell_solid(TriangleSoup{}, cell).triangles.empty());
+}
+
+TEST_CASE("tetrahedralize: an input a few epsilons across that encloses no volume is meshed as its cells",
+          "[thicken][tetrahedralize]") {
+  // The meshrepair fuzzer's finds: a few unit triangles and an unused vertex
+  // far away (epsilon 17 here) made prisms 17 high and 1 wide, needles
+  // crossing each other (3,000 to 10,000 cut points, up to 74 s in the
+  // sanitizer build).
+  TriangleSoup sheets;
+  sheets.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1e4, 1e4, 1e4}};
+  sheets.triangles = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}};
+  tetmesh::PipelineOptions options;
+  options.improve = false;
+  const tetmesh::PipelineResult result = tetmesh::tetrahedralize(sheets, options);
+  CHECK(filter_count(result, "cell_solid") == 1);
+  CHECK(filter_count(result, "thickened_sheets") == -1);
+  const check::TetReport report = check::check_tets(result.mesh);
+  CHECK(report.valid());
+  CHECK(report.boundary.closed());
+  CHECK(report.volume > 0);
+  CHECK(check::one_sided_distance(result.tracked_surface, sheets).max <= 0.54 * result.parameters.epsilon);
 }

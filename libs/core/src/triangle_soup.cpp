@@ -94,6 +94,13 @@ Eigen::AlignedBox3d bounding_box(const TriangleSoup& soup) {
   return box;
 }
 
+Eigen::AlignedBox3d used_bounding_box(const TriangleSoup& soup) {
+  Eigen::AlignedBox3d box;
+  for (const Triangle& t : soup.triangles)
+    for (Index v : t) box.extend(soup.positions[v]);
+  return box;
+}
+
 double bounding_box_diagonal(const TriangleSoup& soup) { return bounding_box(soup).diagonal().norm(); }
 
 }  // namespace mr

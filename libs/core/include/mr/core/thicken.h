@@ -26,4 +26,12 @@ TriangleSoup thicken_sheets(const TriangleSoup& soup, double half_thickness);
 /// pieces overlap; their union is what they describe.
 TriangleSoup fatten_sheets(const TriangleSoup& soup, double radius);
 
+/// The cells of a grid `cell` wide (anchored at the input's box) that
+/// some triangle of `soup` meets, as the outward surface of their union: a
+/// square of two triangles on each cell side that no other marked cell
+/// shares. The solid holds the input, is nowhere thinner than `cell`, and
+/// each of its points is within sqrt(3) `cell` of the input. For inputs a
+/// few cells across: the caller bounds the count.
+TriangleSoup cell_solid(const TriangleSoup& soup, double cell);
+
 }  // namespace mr

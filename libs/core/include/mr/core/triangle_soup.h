@@ -63,6 +63,10 @@ std::string find_soup_inconsistency(const TriangleSoup& soup);
 /// the origin for an empty soup.
 Eigen::AlignedBox3d bounding_box(const TriangleSoup& soup);
 
+/// Axis-aligned bounding box of the corners of the triangles (unused
+/// vertices left out); empty if there is no triangle.
+Eigen::AlignedBox3d used_bounding_box(const TriangleSoup& soup);
+
 /// Axis-aligned bounding box diagonal length of the referenced and unreferenced
 /// vertices alike; 0 for an empty soup.
 double bounding_box_diagonal(const TriangleSoup& soup);
