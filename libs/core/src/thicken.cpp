@@ -70,15 +70,9 @@ void add_edge_box(const Vec3d& a, const Vec3d& b, double radius, TriangleSoup& o
           2 * radius * up, out);
 }
 
-}  // namespace
-
-// Corners in one cell of a grid radius/4 wide are merged first (onto the
-// first of them), so that edges and triangles that differ by less give one
-// piece, not several nearly coincident ones, which crossing at tiny angles
-// cost the insertion tens of thousands of cut points (fuzzer inputs of 11
-// triangles: 19 s). A point moves by at most the cell's diagonal.
-TriangleSoup fatten_sheets(const TriangleSoup& soup, double radius) {
-  const double cell = radius / 4;
+/// For each vertex used by a triangle, the first one (in triangle order) in
+/// its cell of a grid `cell` wide.
+std::vector<Index> merge_corners_in_cells(const TriangleSoup& soup, double cell) {
   std::map<std::array<double, 3>, Index> first_in_cell;
   std::vector<Index> merged(soup.positions.size());
   for (const Triangle& t : soup.triangles)
@@ -88,6 +82,18 @@ TriangleSoup fatten_sheets(const TriangleSoup& soup, double radius) {
                                       std::floor(p.z() / cell)};
       merged[v] = first_in_cell.try_emplace(key, v).first->second;
     }
+  return merged;
+}
+
+}  // namespace
+
+// Corners in one cell of a grid radius/4 wide are merged first, so that
+// edges and triangles that differ by less give one piece, not several
+// nearly coincident ones, which crossing at tiny angles cost the insertion
+// tens of thousands of cut points (fuzzer inputs of 11 triangles: 19 s). A
+// point moves by at most the cell's diagonal.
+TriangleSoup fatten_sheets(const TriangleSoup& soup, double radius) {
+  const std::vector<Index> merged = merge_corners_in_cells(soup, radius / 4);
   std::set<std::array<Index, 3>> triangles;  // sorted: both orientations make one prism
   std::set<std::pair<Index, Index>> edges;
   for (const Triangle& t : soup.triangles) {
@@ -97,10 +103,8 @@ TriangleSoup fatten_sheets(const TriangleSoup& soup, double radius) {
     if (c[0] != c[1] && c[1] != c[2]) triangles.insert(c);
   }
   TriangleSoup out;
-  for (const auto& c : triangles) {
-    const std::array<Vec3d, 3> corner{soup.positions[c[0]], soup.positions[c[1]], soup.positions[c[2]]};
-    add_prism_if_oriented(corner, radius, out);
-  }
+  for (const auto& c : triangles)
+    add_prism_if_oriented({soup.positions[c[0]], soup.positions[c[1]], soup.positions[c[2]]}, radius, out);
   for (const auto& [u, v] : edges) add_edge_box(soup.positions[u], soup.positions[v], radius, out);
   return out;
 }
