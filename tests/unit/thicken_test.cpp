@@ -42,6 +42,21 @@ std::int64_t filter_count(const tetmesh::PipelineResult& result, const std::stri
   return -1;
 }
 
+/// The pipeline as the sheet fallbacks run it: no improvement.
+tetmesh::PipelineResult tetrahedralize_unimproved(const TriangleSoup& soup) {
+  tetmesh::PipelineOptions options;
+  options.improve = false;
+  return tetmesh::tetrahedralize(soup, options);
+}
+
+/// The result's tets, checked valid and closed.
+check::TetReport valid_closed_report(const tetmesh::PipelineResult& result) {
+  const check::TetReport report = check::check_tets(result.mesh);
+  CHECK(report.valid());
+  CHECK(report.boundary.closed());
+  return report;
+}
+
 }  // namespace
 
 TEST_CASE("thicken_sheets: a triangle becomes a closed outward prism within the half thickness",
@@ -62,14 +77,10 @@ TEST_CASE("thicken_sheets: a triangle becomes a closed outward prism within the 
 TEST_CASE("tetrahedralize: an input enclosing no volume gives its sheets thickened, not nothing",
           "[thicken][tetrahedralize][slow]") {
   const TriangleSoup sheets = crossing_doubled_sheets();
-  tetmesh::PipelineOptions options;
-  options.improve = false;
-  const tetmesh::PipelineResult result = tetmesh::tetrahedralize(sheets, options);
+  const tetmesh::PipelineResult result = tetrahedralize_unimproved(sheets);
   CHECK(filter_count(result, "thickened_sheets") == 1);
   CHECK(filter_count(result, "closed_surface") == 1);
-  const check::TetReport report = check::check_tets(result.mesh);
-  CHECK(report.valid());
-  CHECK(report.boundary.closed());
+  const check::TetReport report = valid_closed_report(result);
   // Three crossing unit squares (area 2 each, as 4 triangles of 1/2), a
   // thickness of epsilon: where they cross the prisms overlap, so a little
   // less than 6 epsilon, never more.
@@ -109,14 +120,10 @@ TEST_CASE("tetrahedralize: sheets far thinner than epsilon are fattened when thi
   TriangleSoup sheets;
   sheets.positions = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1e25, 1e25, 1e25}};
   sheets.triangles = {{0, 1, 2}, {0, 1, 3}};
-  tetmesh::PipelineOptions options;
-  options.improve = false;
-  const tetmesh::PipelineResult result = tetmesh::tetrahedralize(sheets, options);
+  const tetmesh::PipelineResult result = tetrahedralize_unimproved(sheets);
   CHECK(filter_count(result, "thickened_sheets") == 1);
   CHECK(filter_count(result, "fattened_sheets") == 1);
-  const check::TetReport report = check::check_tets(result.mesh);
-  CHECK(report.valid());
-  CHECK(report.boundary.closed());
+  const check::TetReport report = valid_closed_report(result);
   const double epsilon = result.parameters.epsilon;
   CHECK(report.volume > 0);
   CHECK(check::one_sided_distance(result.tracked_surface, sheets).max <= 0.67 * epsilon);
@@ -147,14 +154,10 @@ TEST_CASE("tetrahedralize: an input a few epsilons across that encloses no volum
   TriangleSoup sheets;
   sheets.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1e4, 1e4, 1e4}};
   sheets.triangles = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}};
-  tetmesh::PipelineOptions options;
-  options.improve = false;
-  const tetmesh::PipelineResult result = tetmesh::tetrahedralize(sheets, options);
+  const tetmesh::PipelineResult result = tetrahedralize_unimproved(sheets);
   CHECK(filter_count(result, "cell_solid") == 1);
   CHECK(filter_count(result, "thickened_sheets") == -1);
-  const check::TetReport report = check::check_tets(result.mesh);
-  CHECK(report.valid());
-  CHECK(report.boundary.closed());
+  const check::TetReport report = valid_closed_report(result);
   CHECK(report.volume > 0);
   CHECK(check::one_sided_distance(result.tracked_surface, sheets).max <= 0.54 * result.parameters.epsilon);
 }
