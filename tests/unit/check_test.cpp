@@ -125,3 +125,23 @@ TEST_CASE("sampled distance between surfaces", "[check][slow]") {
   // The farthest sample is reported: one of the bigger cube's corners.
   for (int k = 0; k < 3; ++k) CHECK(std::abs(report.farthest[k] - 0.5) == Approx(0.6));
 }
+
+TEST_CASE("sampled distance: a face of the other surface is at 0, a face moved off it is not", "[check]") {
+  const TriangleSoup cube = test::cube_soup();
+  // The same faces with their corners renumbered and each face's corners rotated.
+  TriangleSoup renumbered;
+  renumbered.positions.assign(cube.positions.rbegin(), cube.positions.rend());
+  const auto last = static_cast<Index>(cube.positions.size() - 1);
+  for (const Triangle& t : cube.triangles)
+    renumbered.triangles.push_back({last - t[1], last - t[2], last - t[0]});
+  const check::DistanceReport same = check::one_sided_distance(renumbered, cube);
+  CHECK(same.max == 0.0);
+  CHECK(same.mean == 0.0);
+  // One corner of one face moved out by 0.25: that face's samples are measured, the rest are 0.
+  TriangleSoup moved = cube;
+  moved.positions.push_back(moved.positions[moved.triangles[0][0]] + Vec3d(0, 0, -0.25));
+  moved.triangles[0][0] = static_cast<Index>(moved.positions.size() - 1);
+  const check::DistanceReport off = check::one_sided_distance(moved, cube);
+  CHECK(off.max == Approx(0.25).epsilon(1e-9));
+  CHECK(off.mean > 0.0);
+}

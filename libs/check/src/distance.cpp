@@ -5,26 +5,35 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Simple_cartesian.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 
 namespace mr::check {
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+// An estimate, not a decision: plain doubles. Epick's filtered sphere-box test fell back to
+// exact arithmetic often enough to take a third of the time.
+using K = CGAL::Simple_cartesian<double>;
 using CgalTriangle = K::Triangle_3;
 using Primitive = CGAL::AABB_triangle_primitive<K, std::vector<CgalTriangle>::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 
 K::Point_3 to_point(const Vec3d& p) { return {p.x(), p.y(), p.z()}; }
 
-std::vector<Vec3d> sample_points(const TriangleSoup& soup, const DistanceOptions& options) {
+// Samples of each face in a run of their own: `first[f]` to `first[f + 1]`.
+struct Samples {
+  std::vector<Vec3d> points;
+  std::vector<std::size_t> first;
+};
+
+Samples sample_points(const TriangleSoup& soup, const DistanceOptions& options) {
   const double diagonal = bounding_box_diagonal(soup);
   double total_area = 0;
   for (const Triangle& t : soup.triangles)
@@ -38,11 +47,13 @@ std::vector<Vec3d> sample_points(const TriangleSoup& soup, const DistanceOptions
 
   std::mt19937_64 rng(12345);  // fixed seed: the same samples every run
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::vector<Vec3d> samples;
+  Samples samples;
+  std::vector<Vec3d>& points = samples.points;
   for (const Triangle& t : soup.triangles) {
+    samples.first.push_back(points.size());
     const Vec3d &a = soup.positions[t[0]], &b = soup.positions[t[1]], &c = soup.positions[t[2]];
     for (const Vec3d& p : {a, b, c, Vec3d((a + b) / 2), Vec3d((b + c) / 2), Vec3d((c + a) / 2)})
-      samples.push_back(p);
+      points.push_back(p);
     const double area = 0.5 * (b - a).cross(c - a).norm();
     const double expected = density * area;
     auto count = static_cast<std::size_t>(expected);
@@ -53,10 +64,26 @@ std::vector<Vec3d> sample_points(const TriangleSoup& soup, const DistanceOptions
         u = 1 - u;
         v = 1 - v;
       }
-      samples.push_back(a + u * (b - a) + v * (c - a));
+      points.push_back(a + u * (b - a) + v * (c - a));
     }
   }
+  samples.first.push_back(points.size());
   return samples;
+}
+
+// A face by its corners' coordinates, in sorted order: equal for the same triangle, however its
+// corners are numbered or ordered.
+using FaceKey = std::array<double, 9>;
+
+FaceKey face_key(const TriangleSoup& soup, const Triangle& t) {
+  std::array<Vec3d, 3> corners = {soup.positions[t[0]], soup.positions[t[1]], soup.positions[t[2]]};
+  std::sort(corners.begin(), corners.end(), [](const Vec3d& a, const Vec3d& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  FaceKey key;
+  for (int c = 0; c < 3; ++c)
+    for (int k = 0; k < 3; ++k) key[3 * c + k] = corners[c][k];
+  return key;
 }
 
 }  // namespace
@@ -65,33 +92,51 @@ DistanceReport one_sided_distance(const TriangleSoup& from, const TriangleSoup& 
                                   const DistanceOptions& options) {
   DistanceReport report;
   std::vector<CgalTriangle> triangles;
+  std::vector<FaceKey> to_faces;
   for (const Triangle& t : to.triangles) {
     CgalTriangle tri(to_point(to.positions[t[0]]), to_point(to.positions[t[1]]),
                      to_point(to.positions[t[2]]));
-    if (!tri.is_degenerate()) triangles.push_back(tri);
+    if (tri.is_degenerate()) continue;
+    triangles.push_back(tri);
+    to_faces.push_back(face_key(to, t));
   }
+  std::sort(to_faces.begin(), to_faces.end());
   if (triangles.empty() || from.triangles.empty()) return report;
   Tree tree(triangles.begin(), triangles.end());
   // Built here, not lazily by the first query: a query reads the primitives before it takes the
   // lock under which the first one sorts them (a data race between the threads below).
   tree.build();
   tree.accelerate_distance_queries();
-  const std::vector<Vec3d> samples = sample_points(from, options);
-  std::vector<double> distances(samples.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size()), [&](const auto& range) {
-    for (std::size_t i = range.begin(); i < range.end(); ++i)
-      distances[i] = std::sqrt(tree.squared_distance(to_point(samples[i])));
+  const Samples samples = sample_points(from, options);
+  std::vector<double> distances(samples.points.size());
+  // Per face, each query starts from the closest point of the one before (nearby: the same
+  // face), which prunes the tree at once; the distance found does not depend on the start.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.triangles.size()), [&](const auto& range) {
+    for (std::size_t f = range.begin(); f < range.end(); ++f) {
+      const std::size_t begin = samples.first[f], end = samples.first[f + 1];
+      // A face of `to` itself (a kept input triangle): every sample is on it.
+      if (std::binary_search(to_faces.begin(), to_faces.end(), face_key(from, from.triangles[f]))) {
+        std::fill(distances.begin() + begin, distances.begin() + end, 0.0);
+        continue;
+      }
+      auto hint = tree.closest_point_and_primitive(to_point(samples.points[begin]));
+      for (std::size_t i = begin; i < end; ++i) {
+        const K::Point_3 query = to_point(samples.points[i]);
+        if (i > begin) hint = tree.closest_point_and_primitive(query, hint);
+        distances[i] = std::sqrt(CGAL::squared_distance(query, hint.first));
+      }
+    }
   });
-  report.samples = samples.size();
+  report.samples = distances.size();
   double sum = 0;
   for (std::size_t i = 0; i < distances.size(); ++i) {
     if (distances[i] > report.max) {
       report.max = distances[i];
-      report.farthest = samples[i];
+      report.farthest = samples.points[i];
     }
     sum += distances[i];
   }
-  report.mean = sum / double(samples.size());
+  report.mean = sum / double(distances.size());
   return report;
 }
 
