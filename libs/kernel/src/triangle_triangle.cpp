@@ -12,8 +12,11 @@
 
 #include <mr/kernel/intersections.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
+#include <type_traits>
 #include <utility>
 
 namespace mr {
@@ -169,6 +172,19 @@ CommonCorners common_corners(const Tri<P>& t1, const Tri<P>& t2) {
   return common;
 }
 
+/// Whether c and d lie strictly on opposite sides of the line ab seen along some axis. Then
+/// triangles abc and abd meet only along ab, in one plane or not: two planes through ab meet in
+/// its line, and in one plane the projection keeps sides. On nearly flat neighbours this is
+/// well conditioned where orient3d(a, b, c, d) is not (it goes to exact arithmetic).
+template <class P>
+bool opposite_in_a_projection(const P& a, const P& b, const P& c, const P& d) {
+  for (int axis = 2; axis >= 0; --axis) {
+    const int side_c = orient2d_projected(a, b, c, axis);
+    if (side_c != 0 && orient2d_projected(a, b, d, axis) == -side_c) return true;
+  }
+  return false;
+}
+
 /// Triangles with exactly one common edge (a, b) and third corners c and d
 /// meet beyond that edge only when they lie in one plane with c and d on
 /// one side of it: one orient3d decides what the general test asks up to
@@ -183,6 +199,10 @@ bool classify_on_common_edge(const Tri<P>& t1, const Tri<P>& t2, const CommonCor
   const int d = std::countr_zero(~common.in2 & 7u);
   const P& a = *t1[(c + 1) % 3];
   const P& b = *t1[(c + 2) % 3];
+  if (opposite_in_a_projection(a, b, *t1[c], *t2[d])) {
+    hit.kind = TriangleTriangleKind::shared_edge;
+    return true;
+  }
   if (orient3d(a, b, *t1[c], *t2[d]) != 0) {
     hit.kind = TriangleTriangleKind::shared_edge;
     return true;
@@ -198,6 +218,63 @@ bool classify_on_common_edge(const Tri<P>& t1, const Tri<P>& t2, const CommonCor
   return false;
 }
 
+/// Whether the triangles' planes are nearly one, estimated in doubles: there orient3d needs exact
+/// arithmetic, and the projected test below is the cheaper way to a verdict. Only an order of
+/// evaluation depends on it, never a verdict.
+bool nearly_coplanar(const Tri<Vec3d>& t1, const Tri<Vec3d>& t2) {
+  const Vec3d n = (*t2[1] - *t2[0]).cross(*t2[2] - *t2[0]);
+  double length = 0.0;
+  for (const Tri<Vec3d>* t : {&t1, &t2})
+    for (int i = 0; i < 3; ++i)
+      length = std::max(length, (*(*t)[(i + 1) % 3] - *(*t)[i]).cwiseAbs().maxCoeff());
+  const double tolerance = 1e-6 * n.cwiseAbs().maxCoeff() * length;
+  for (const Vec3d* x : t1)
+    if (std::abs(n.dot(*x - *t2[0])) > tolerance) return false;
+  return true;
+}
+
+int dominant_axis_of_normal(const Tri<Vec3d>& t) {
+  const Vec3d n = (*t[1] - *t[0]).cross(*t[2] - *t[0]).cwiseAbs();
+  return n.x() >= n.y() && n.x() >= n.z() ? 0 : n.y() >= n.z() ? 1 : 2;
+}
+
+/// Seen along `axis`, an edge line of `a` has every vertex of `b` strictly on the side away from
+/// `a`, except a vertex both share on that edge. No common vertex: the projections are apart, so
+/// the triangles are (kind disjoint). One common vertex v on that edge, both projections
+/// non-degenerate: the projections meet only in v, and a non-degenerate projection is one to
+/// one, so the triangles meet only in v (shared_vertex).
+bool apart_along_edge_line(const Tri<Vec3d>& a, const Tri<Vec3d>& b, int axis, int shared) {
+  for (int e = 0; e < 3; ++e) {
+    const Vec3d &u = *a[e], &w = *a[(e + 1) % 3];
+    const int inside = orient2d_projected(u, w, *a[(e + 2) % 3], axis);
+    if (inside == 0) return false;  // a seen edge-on: no edge line separates
+    int on_line = 0;
+    bool apart = true;
+    for (const Vec3d* y : b) {
+      if (shared > 0 && (*y == u || *y == w)) {
+        ++on_line;
+        continue;
+      }
+      if (orient2d_projected(u, w, *y, axis) != -inside) {
+        apart = false;
+        break;
+      }
+    }
+    if (apart && on_line == shared) return true;
+  }
+  return false;
+}
+
+/// The projected test for nearly coplanar triangles with at most one common vertex; false when
+/// it does not decide.
+bool apart_in_projection(const Tri<Vec3d>& t1, const Tri<Vec3d>& t2, int shared) {
+  const int axis = dominant_axis_of_normal(t2);
+  if (shared == 1 && (orient2d_projected(*t1[0], *t1[1], *t1[2], axis) == 0 ||
+                      orient2d_projected(*t2[0], *t2[1], *t2[2], axis) == 0))
+    return false;
+  return apart_along_edge_line(t1, t2, axis, shared) || apart_along_edge_line(t2, t1, axis, shared);
+}
+
 template <class P>
 TriangleTriangleHit triangles_impl(const P& p1, const P& q1, const P& r1, const P& p2, const P& q2,
                                    const P& r2) {
@@ -206,6 +283,12 @@ TriangleTriangleHit triangles_impl(const P& p1, const P& q1, const P& r1, const 
   TriangleTriangleHit hit;
   hit.shared_vertices = common.count;
   if (classify_on_common_edge(t1, t2, common, hit)) return hit;
+  if constexpr (std::is_same_v<P, Vec3d>) {
+    if (common.count <= 1 && nearly_coplanar(t1, t2) && apart_in_projection(t1, t2, common.count)) {
+      hit.kind = common.count == 0 ? TriangleTriangleKind::disjoint : TriangleTriangleKind::shared_vertex;
+      return hit;
+    }
+  }
   const std::array<int, 3> s1on2 = {orient3d(p2, q2, r2, p1), orient3d(p2, q2, r2, q1),
                                     orient3d(p2, q2, r2, r1)};
   if (all_same_strict_sign(s1on2)) return hit;
