@@ -37,6 +37,9 @@ int orient2d(const Vec2d& a, const Vec2d& b, const Vec2d& c) {
 }
 
 int orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
+  // A repeated point (a shared corner, as the triangle tests ask often) makes the determinant 0;
+  // CGAL's interval filter cannot see that unless the repeat is `a`, and computes it exactly.
+  if (a == b || a == c || a == d || b == c || b == d || c == d) return 0;
   return sign_of(Epick::Orientation_3()(to_cgal(a), to_cgal(b), to_cgal(c), to_cgal(d)));
 }
 

@@ -15,7 +15,7 @@ namespace mr::spatial {
 /// in the vertices and edges they share (mr::intersect_triangles, exact;
 /// vertices identified by position). Only faces flagged in `asked` are
 /// tested (empty: all); faces flagged in `skip` (empty: none) are neither
-/// tested nor tested against. Candidates come from a box grid; parallel,
+/// tested nor tested against. Candidates come from an AABB tree; parallel,
 /// deterministic.
 std::vector<std::uint8_t> faces_meeting_others(const TriangleSoup& soup,
                                                std::span<const std::uint8_t> asked = {},
