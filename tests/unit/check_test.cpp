@@ -126,6 +126,16 @@ TEST_CASE("sampled distance between surfaces", "[check][slow]") {
   for (int k = 0; k < 3; ++k) CHECK(std::abs(report.farthest[k] - 0.5) == Approx(0.6));
 }
 
+TEST_CASE("sampled distance: points on a sliver 1e25 long are on it", "[check]") {
+  TriangleSoup sheets;  // the meshrepair fuzzer's unit triangle and sliver
+  sheets.positions = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1e25, 1e25, 1e25}};
+  sheets.triangles = {{0, 1, 2}, {0, 1, 3}};
+  TriangleSoup part;  // a triangle inside the sliver, sharing none of its faces
+  part.positions = {{0, 0, 0}, {0.5, 0, 0}, {5e24, 5e24, 5e24}};
+  part.triangles = {{0, 1, 2}};
+  CHECK(check::one_sided_distance(part, sheets).max <= 1e-9 * 1e25);
+}
+
 TEST_CASE("sampled distance: a face of the other surface is at 0, a face moved off it is not", "[check]") {
   const TriangleSoup cube = test::cube_soup();
   // The same faces with their corners renumbered and each face's corners rotated.

@@ -5,7 +5,7 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -18,9 +18,10 @@
 namespace mr::check {
 namespace {
 
-// An estimate, not a decision: plain doubles. Epick's filtered sphere-box test fell back to
-// exact arithmetic often enough to take a third of the time.
-using K = CGAL::Simple_cartesian<double>;
+// Exact predicates: in plain doubles the closest point on a sliver 1e25 long was put on the
+// wrong side of an edge (distances of 1e25 from points on it). The tree's sphere-box test then
+// also goes exact now and then, a third of the time on small models.
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using CgalTriangle = K::Triangle_3;
 using Primitive = CGAL::AABB_triangle_primitive<K, std::vector<CgalTriangle>::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
