@@ -172,6 +172,21 @@ CommonCorners common_corners(const Tri<P>& t1, const Tri<P>& t2) {
   return common;
 }
 
+/// Whether the triangles' planes are nearly one, estimated in doubles: there orient3d needs exact
+/// arithmetic, and the projected test below is the cheaper way to a verdict. Only an order of
+/// evaluation depends on it, never a verdict.
+bool nearly_coplanar(const Tri<Vec3d>& t1, const Tri<Vec3d>& t2) {
+  const Vec3d n = (*t2[1] - *t2[0]).cross(*t2[2] - *t2[0]);
+  double length = 0.0;
+  for (const Tri<Vec3d>* t : {&t1, &t2})
+    for (int i = 0; i < 3; ++i)
+      length = std::max(length, (*(*t)[(i + 1) % 3] - *(*t)[i]).cwiseAbs().maxCoeff());
+  const double tolerance = 1e-6 * n.cwiseAbs().maxCoeff() * length;
+  for (const Vec3d* x : t1)
+    if (std::abs(n.dot(*x - *t2[0])) > tolerance) return false;
+  return true;
+}
+
 /// Whether c and d lie strictly on opposite sides of the line ab seen along some axis. Then
 /// triangles abc and abd meet only along ab, in one plane or not: two planes through ab meet in
 /// its line, and in one plane the projection keeps sides. On nearly flat neighbours this is
@@ -199,6 +214,13 @@ bool classify_on_common_edge(const Tri<P>& t1, const Tri<P>& t2, const CommonCor
   const int d = std::countr_zero(~common.in2 & 7u);
   const P& a = *t1[(c + 1) % 3];
   const P& b = *t1[(c + 2) % 3];
+  if constexpr (std::is_same_v<P, Vec3d>) {
+    // Far from one plane, orient3d decides at once (its filter does).
+    if (!nearly_coplanar(t1, t2) && orient3d(a, b, *t1[c], *t2[d]) != 0) {
+      hit.kind = TriangleTriangleKind::shared_edge;
+      return true;
+    }
+  }
   if (opposite_in_a_projection(a, b, *t1[c], *t2[d])) {
     hit.kind = TriangleTriangleKind::shared_edge;
     return true;
@@ -216,21 +238,6 @@ bool classify_on_common_edge(const Tri<P>& t1, const Tri<P>& t2, const CommonCor
     return true;
   }
   return false;
-}
-
-/// Whether the triangles' planes are nearly one, estimated in doubles: there orient3d needs exact
-/// arithmetic, and the projected test below is the cheaper way to a verdict. Only an order of
-/// evaluation depends on it, never a verdict.
-bool nearly_coplanar(const Tri<Vec3d>& t1, const Tri<Vec3d>& t2) {
-  const Vec3d n = (*t2[1] - *t2[0]).cross(*t2[2] - *t2[0]);
-  double length = 0.0;
-  for (const Tri<Vec3d>* t : {&t1, &t2})
-    for (int i = 0; i < 3; ++i)
-      length = std::max(length, (*(*t)[(i + 1) % 3] - *(*t)[i]).cwiseAbs().maxCoeff());
-  const double tolerance = 1e-6 * n.cwiseAbs().maxCoeff() * length;
-  for (const Vec3d* x : t1)
-    if (std::abs(n.dot(*x - *t2[0])) > tolerance) return false;
-  return true;
 }
 
 int dominant_axis_of_normal(const Tri<Vec3d>& t) {
