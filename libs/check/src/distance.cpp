@@ -72,19 +72,12 @@ Samples sample_points(const TriangleSoup& soup, const DistanceOptions& options) 
   return samples;
 }
 
-// A face by its corners' coordinates, in sorted order: equal for the same triangle, however its
-// corners are numbered or ordered.
+// A face by its corners' coordinates: equal for the same triangle, however its corners are
+// numbered or ordered.
 using FaceKey = std::array<double, 9>;
 
 FaceKey face_key(const TriangleSoup& soup, const Triangle& t) {
-  std::array<Vec3d, 3> corners = {soup.positions[t[0]], soup.positions[t[1]], soup.positions[t[2]]};
-  std::sort(corners.begin(), corners.end(), [](const Vec3d& a, const Vec3d& b) {
-    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
-  });
-  FaceKey key;
-  for (int c = 0; c < 3; ++c)
-    for (int k = 0; k < 3; ++k) key[3 * c + k] = corners[c][k];
-  return key;
+  return sorted_corner_coordinates({soup.positions[t[0]], soup.positions[t[1]], soup.positions[t[2]]});
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 
 namespace mr {
@@ -92,6 +93,17 @@ Eigen::AlignedBox3d bounding_box(const TriangleSoup& soup) {
   Eigen::AlignedBox3d box;
   for (const Vec3d& p : soup.positions) box.extend(p);
   return box;
+}
+
+std::array<double, 9> sorted_corner_coordinates(const std::array<Vec3d, 3>& corners) {
+  std::array<Vec3d, 3> sorted = corners;
+  std::sort(sorted.begin(), sorted.end(), [](const Vec3d& a, const Vec3d& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  std::array<double, 9> key{};
+  for (int c = 0; c < 3; ++c)
+    for (int k = 0; k < 3; ++k) key[3 * c + k] = sorted[c][k];
+  return key;
 }
 
 Eigen::AlignedBox3d used_bounding_box(const TriangleSoup& soup) {

@@ -175,8 +175,10 @@ CommonCorners common_corners(const Tri<P>& t1, const Tri<P>& t2) {
 /// Whether the triangles' planes are nearly one, estimated in doubles: there orient3d needs exact
 /// arithmetic, and the projected test below is the cheaper way to a verdict. Only an order of
 /// evaluation depends on it, never a verdict.
-bool nearly_coplanar(const Tri<Vec3d>& t1, const Tri<Vec3d>& t2) {
-  const Vec3d n = (*t2[1] - *t2[0]).cross(*t2[2] - *t2[0]);
+Vec3d normal_of(const Tri<Vec3d>& t) { return (*t[1] - *t[0]).cross(*t[2] - *t[0]); }
+
+/// `n` is t2's normal (normal_of).
+bool nearly_coplanar(const Tri<Vec3d>& t1, const Tri<Vec3d>& t2, const Vec3d& n) {
   double length = 0.0;
   for (const Tri<Vec3d>* t : {&t1, &t2})
     for (int i = 0; i < 3; ++i)
@@ -216,7 +218,7 @@ bool classify_on_common_edge(const Tri<P>& t1, const Tri<P>& t2, const CommonCor
   const P& b = *t1[(c + 2) % 3];
   if constexpr (std::is_same_v<P, Vec3d>) {
     // Far from one plane, orient3d decides at once (its filter does).
-    if (!nearly_coplanar(t1, t2) && orient3d(a, b, *t1[c], *t2[d]) != 0) {
+    if (!nearly_coplanar(t1, t2, normal_of(t2)) && orient3d(a, b, *t1[c], *t2[d]) != 0) {
       hit.kind = TriangleTriangleKind::shared_edge;
       return true;
     }
@@ -238,11 +240,6 @@ bool classify_on_common_edge(const Tri<P>& t1, const Tri<P>& t2, const CommonCor
     return true;
   }
   return false;
-}
-
-int dominant_axis_of_normal(const Tri<Vec3d>& t) {
-  const Vec3d n = (*t[1] - *t[0]).cross(*t[2] - *t[0]).cwiseAbs();
-  return n.x() >= n.y() && n.x() >= n.z() ? 0 : n.y() >= n.z() ? 1 : 2;
 }
 
 /// Seen along `axis`, an edge line of `a` has every vertex of `b` strictly on the side away from
@@ -272,10 +269,10 @@ bool apart_along_edge_line(const Tri<Vec3d>& a, const Tri<Vec3d>& b, int axis, i
   return false;
 }
 
-/// The projected test for nearly coplanar triangles with at most one common vertex; false when
-/// it does not decide.
-bool apart_in_projection(const Tri<Vec3d>& t1, const Tri<Vec3d>& t2, int shared) {
-  const int axis = dominant_axis_of_normal(t2);
+/// The projected test for nearly coplanar triangles with at most one common vertex, along the
+/// dominant axis of t2's normal `n2`; false when it does not decide.
+bool apart_in_projection(const Tri<Vec3d>& t1, const Tri<Vec3d>& t2, const Vec3d& n2, int shared) {
+  const int axis = dominant_axis(n2);
   if (shared == 1 && (orient2d_projected(*t1[0], *t1[1], *t1[2], axis) == 0 ||
                       orient2d_projected(*t2[0], *t2[1], *t2[2], axis) == 0))
     return false;
@@ -291,9 +288,12 @@ TriangleTriangleHit triangles_impl(const P& p1, const P& q1, const P& r1, const 
   hit.shared_vertices = common.count;
   if (classify_on_common_edge(t1, t2, common, hit)) return hit;
   if constexpr (std::is_same_v<P, Vec3d>) {
-    if (common.count <= 1 && nearly_coplanar(t1, t2) && apart_in_projection(t1, t2, common.count)) {
-      hit.kind = common.count == 0 ? TriangleTriangleKind::disjoint : TriangleTriangleKind::shared_vertex;
-      return hit;
+    if (common.count <= 1) {
+      const Vec3d n2 = normal_of(t2);
+      if (nearly_coplanar(t1, t2, n2) && apart_in_projection(t1, t2, n2, common.count)) {
+        hit.kind = common.count == 0 ? TriangleTriangleKind::disjoint : TriangleTriangleKind::shared_vertex;
+        return hit;
+      }
     }
   }
   const std::array<int, 3> s1on2 = {orient3d(p2, q2, r2, p1), orient3d(p2, q2, r2, q1),

@@ -35,12 +35,6 @@ bool coplanar(const Corners& reference, const std::vector<Vec3d>& points) {
 // Exact orientation of a face within the common plane, seen along `axis`.
 int planar_orientation(const Corners& c, int axis) { return orient2d_projected(c[0], c[1], c[2], axis); }
 
-int dominant_axis(const Vec3d& normal) {
-  int axis = 0;
-  normal.cwiseAbs().maxCoeff(&axis);
-  return axis;
-}
-
 // True when the old faces and the new faces lie in one plane (exactly), none
 // is folded (all have the same exact orientation), and the new faces tile a
 // region the old faces tiled. Then every new face lies in the old faces,
@@ -166,17 +160,7 @@ std::size_t MeshState::SortedCornersHash::operator()(const SortedCorners& key) c
 
 // The corners in lexicographic order, so that a triangle met in any rotation
 // or orientation is tested (and stored) the same way.
-MeshState::SortedCorners MeshState::sorted_corners(const Corners& c) {
-  std::array<Vec3d, 3> sorted = c;
-  const auto less = [](const Vec3d& a, const Vec3d& b) {
-    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
-  };
-  std::sort(sorted.begin(), sorted.end(), less);
-  SortedCorners key{};
-  for (int k = 0; k < 3; ++k)
-    for (int i = 0; i < 3; ++i) key[3 * k + i] = sorted[k][i];
-  return key;
-}
+MeshState::SortedCorners MeshState::sorted_corners(const Corners& c) { return sorted_corner_coordinates(c); }
 
 Corners MeshState::corners_of(const SortedCorners& key) {
   return {Vec3d(key[0], key[1], key[2]), Vec3d(key[3], key[4], key[5]), Vec3d(key[6], key[7], key[8])};

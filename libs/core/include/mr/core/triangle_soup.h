@@ -63,6 +63,11 @@ std::string find_soup_inconsistency(const TriangleSoup& soup);
 /// the origin for an empty soup.
 Eigen::AlignedBox3d bounding_box(const TriangleSoup& soup);
 
+/// A triangle's corner coordinates, corners in lexicographic order: the same
+/// for the triangle met in any rotation or orientation (a key for a face by
+/// its positions).
+std::array<double, 9> sorted_corner_coordinates(const std::array<Vec3d, 3>& corners);
+
 /// Axis-aligned bounding box of the corners of the triangles (unused
 /// vertices left out); empty if there is no triangle.
 Eigen::AlignedBox3d used_bounding_box(const TriangleSoup& soup);

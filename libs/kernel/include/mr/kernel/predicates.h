@@ -39,6 +39,15 @@ int insphere(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d, con
 /// increasing order, e.g. axis 0 keeps (y, z).
 int orient2d_projected(const Vec3d& a, const Vec3d& b, const Vec3d& c, int axis);
 
+/// The axis along which a plane with this normal projects best (its largest
+/// normal component; the first of equal ones): where orient2d_projected is
+/// best conditioned. A choice, not a predicate.
+inline int dominant_axis(const Vec3d& normal) {
+  int axis = 0;
+  normal.cwiseAbs().maxCoeff(&axis);
+  return axis;
+}
+
 /// True if a, b and c lie on one line (or coincide), exactly.
 inline bool collinear(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
   return orient2d_projected(a, b, c, 0) == 0 && orient2d_projected(a, b, c, 1) == 0 &&
