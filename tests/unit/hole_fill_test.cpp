@@ -260,6 +260,7 @@ TEST_CASE("meshrepair fills the holes of an input that lacks nothing else and ke
   const nlohmann::json remeshed = nlohmann::json::parse(std::ifstream(dir / "r.json"));
   REQUIRE(remeshed["path"] == "tetrahedralize");
   REQUIRE(remeshed["hole_fill_declined"] == "--remesh");
+  REQUIRE(remeshed["keep_input_abandoned"] == "");  // nothing to give up under --remesh
   // Both paths report their peak memory, in all and per input face.
   for (const nlohmann::json* figures : {&stats, &remeshed}) {
     const double peak_mb = (*figures)["memory"]["peak_mb"];

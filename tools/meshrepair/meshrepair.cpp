@@ -256,13 +256,15 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
 // (mode becomes remesh) when its insertion grows past the tets it may
 // cost, unless --keep-input asked for it.
 tetmesh::PipelineResult tetrahedralize_for_repair(const ToolOptions& options, const TriangleSoup& input,
-                                                  RebuildMode& mode, std::ostream& err) {
+                                                  RebuildMode& mode, std::string& abandoned,
+                                                  std::ostream& err) {
   tetmesh::PipelineOptions pipeline = repair_pipeline_options(options.tetrahedralize, mode);
   if (mode == RebuildMode::keep_input && !options.rebuild)
     pipeline.tetrahedralize.max_insertion_tets = keep_input_tet_budget(input.triangles.size());
   try {
     return tetmesh::tetrahedralize(input, pipeline, make_logger(options, err));
   } catch (const tetmesh::InsertionTooCostly& e) {
+    abandoned = e.what();
     if (!options.quiet)
       err << "meshrepair: keeping the input triangles would cost too much (" << e.what()
           << "); rebuilding the surface instead\n";
@@ -276,7 +278,8 @@ tetmesh::PipelineResult tetrahedralize_for_repair(const ToolOptions& options, co
 struct RebuildInput {
   const TriangleSoup& input;
   double seconds_read = 0.0;
-  std::string declined;  ///< why the holes-only path declined
+  std::string declined;        ///< why the holes-only path declined
+  std::string keep_abandoned;  ///< why keeping the input was given up (empty: it was not)
 };
 
 // Tets, surface repair, the written file and its figures, in `mode` (which
@@ -285,7 +288,8 @@ void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
                        const std::vector<std::string>& files, const RebuildInput& in, RebuildMode& mode,
                        std::ostream& out, std::ostream& err) {
   const TriangleSoup& input = in.input;
-  const tetmesh::PipelineResult pipeline = tetrahedralize_for_repair(options, input, mode, err);
+  std::string abandoned = in.keep_abandoned;
+  const tetmesh::PipelineResult pipeline = tetrahedralize_for_repair(options, input, mode, abandoned, err);
   repair::RepairOptions repair_options =
       surface_repair_options(pipeline, options.tetrahedralize.threads, options.cleanup, mode);
   io::WriteOptions write_options = options.write;
@@ -312,7 +316,7 @@ void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
   if (!options.stats_path.empty())
     cli::write_stats_file(options.stats_path,
                           make_repair_stats({input, pipeline, repaired, written, provenance.summary,
-                                             in.seconds_read, seconds_write, in.declined})
+                                             in.seconds_read, seconds_write, in.declined, abandoned})
                               .dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << repaired.surface.triangles.size()
@@ -329,7 +333,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   const auto start = std::chrono::steady_clock::now();
   check_file_fits(files[0], options.max_memory);
   const TriangleSoup input = io::read_surface(registry, files[0]);
-  RebuildInput rebuild{input, seconds_since(start), {}};
+  RebuildInput rebuild{input, seconds_since(start), {}, {}};
   check_faces_fit(files[0], input.num_triangles(), kPipelineBytesPerFace, options.max_memory);
   check_has_area(files[0], input);
   check_output_precision(registry, files[1], input, options);
@@ -347,6 +351,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
     if (!options.quiet)
       err << "meshrepair: keeping the input failed (" << e.what() << "); rebuilding the surface instead\n";
     mode = RebuildMode::remesh;
+    rebuild.keep_abandoned = e.what();
     rebuild_and_write(options, registry, files, rebuild, mode, out, err);
   }
 }

@@ -121,6 +121,7 @@ nlohmann::json make_repair_stats(const RepairRun& run) {
       {"memory", memory_figures(run.input)},
       {"path", "tetrahedralize"},
       {"hole_fill_declined", run.hole_fill_declined},
+      {"keep_input_abandoned", run.keep_input_abandoned},
       {"input", input_defects(run.input)},
       {"epsilon_abs", run.pipeline.parameters.epsilon},
       {"bbox_diagonal", run.pipeline.parameters.diagonal},

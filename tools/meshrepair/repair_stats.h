@@ -23,7 +23,8 @@ struct RepairRun {
   const check::ProvenanceSummary& provenance;
   double seconds_read = 0.0;
   double seconds_write = 0.0;
-  std::string hole_fill_declined;  ///< why the holes-only path was not taken
+  std::string hole_fill_declined;    ///< why the holes-only path was not taken
+  std::string keep_input_abandoned;  ///< why keeping the input was given up for a rebuild (empty: it was not)
 };
 
 nlohmann::json make_repair_stats(const RepairRun& run);

@@ -7,6 +7,7 @@
 #include <mr/core/errors.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 
@@ -75,6 +76,30 @@ std::vector<char> mergeable(std::span<const std::array<Index, 3>> triangles, std
   return eligible;
 }
 
+// Throws InsertionTooCostly once the mesh has more than `max_tets` tets, or
+// once it is on course to have four times as many: after a thousandth of the
+// triangles (at least 32), the growth so far carried on at the same rate to
+// all of them. The long slivers of a CAD model's kept input
+// (manifold/Generic_Twin) cut hundreds of thousands of tets in the first
+// hundred triangles; waiting for the budget itself cost seconds the rebuild
+// needs.
+void check_budget(std::size_t tets, std::size_t tets_before, std::size_t done, std::size_t n,
+                  std::size_t max_tets) {
+  constexpr double kProjectedOver = 4.0;
+  const double grown = static_cast<double>(tets) - static_cast<double>(tets_before);
+  const double projected = static_cast<double>(tets_before) + grown * static_cast<double>(n) / double(done);
+  const bool over = tets > max_tets;
+  const bool on_course = done >= std::max<std::size_t>(32, n / 1000) && done < n &&
+                         projected > kProjectedOver * static_cast<double>(max_tets);
+  if (!over && !on_course) return;
+  const std::string after = std::to_string(tets) + " tets after " + std::to_string(done) + " of " +
+                            std::to_string(n) + " triangles";
+  if (over) throw InsertionTooCostly("insertion: more than " + std::to_string(max_tets) + ": " + after);
+  throw InsertionTooCostly("insertion: on course for " + std::to_string(std::llround(projected)) +
+                           " tets, more than 4 times its budget of " + std::to_string(max_tets) + ": " +
+                           after);
+}
+
 }  // namespace
 
 InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input, std::span<const Index> input_vertex,
@@ -98,6 +123,7 @@ InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input, std::span
   detail::TriangleInserter inserter(mesh, options.max_exact_bits);
   Copies copies;
   InsertionStats stats;
+  const std::size_t tets_before = mesh.num_tets();
   stats.marked_as.resize(n);
   auto polygon = grouping.polygons.begin();
   const std::size_t report_every = std::max<std::size_t>(1, n / 100);
@@ -121,9 +147,7 @@ InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input, std::span
       ++stats.merged;
     }
     if (i % report_every == 0) logger.progress("insertion", static_cast<double>(i) / static_cast<double>(n));
-    if (options.max_tets != 0 && mesh.num_tets() > options.max_tets)
-      throw InsertionTooCostly("insertion: more than " + std::to_string(options.max_tets) + " tets after " +
-                               std::to_string(i + 1) + " of " + std::to_string(n) + " triangles");
+    if (options.max_tets != 0) check_budget(mesh.num_tets(), tets_before, i + 1, n, options.max_tets);
   }
   copies.mark(mesh);
   stats.copies = copies.count();

@@ -274,3 +274,31 @@ TEST_CASE("insertion: coplanar triangles merge only where the polygon stays conv
     require_exactly_embedded(soup, inserted);
   }
 }
+
+TEST_CASE("insertion: a run on course for four times its tet budget stops early", "[tetmesh][insertion]") {
+  // 1000 parallel pages in 9 piles: each cuts about as many tets as the one
+  // before, so the growth of the first ones tells where the run is going.
+  TriangleSoup book;
+  constexpr int kPages = 1000;
+  for (int i = 0; i < kPages; ++i) {
+    const double x = 0.35 * (i % 3), y = 0.35 * ((i / 3) % 3), z = double(i) / kPages;
+    const auto first = static_cast<Index>(book.positions.size());
+    book.positions.insert(book.positions.end(), {{x, y, z}, {x + 0.3, y, z}, {x, y + 0.3, z}});
+    book.triangles.push_back({first, Index(first + 1), Index(first + 2)});
+  }
+  const DerivedParameters derived = derive_parameters({}, book);
+  BackgroundMesh background =
+      build_background_mesh(book, spatial::AabbTree(book), background_parameters(derived, 1));
+  InsertionOptions options;
+  options.max_tets = 3 * background.mesh.num_tets();
+  std::size_t tets_at_stop = 0;
+  try {
+    insert_triangles(background.mesh, book, background.input_vertex, {}, {}, options);
+  } catch (const InsertionTooCostly& e) {
+    tets_at_stop = background.mesh.num_tets();
+    INFO(e.what());
+    CHECK(std::string(e.what()).find("on course for") != std::string::npos);
+  }
+  CHECK(tets_at_stop > 0);
+  CHECK(tets_at_stop <= options.max_tets);
+}
