@@ -116,7 +116,9 @@ SampledEnvelope::SampledEnvelope(const TriangleSoup& input, const EnvelopeOption
 }
 
 SampledEnvelope::Sample SampledEnvelope::sample(const Vec3d& p, double accept) const {
-  const double accept_sq = accept > 0.0 ? accept * accept : -1.0;
+  // A point on an input triangle is at 0, the least any search can find: a
+  // search stops there even when no smaller radius would let it stop sooner.
+  const double accept_sq = accept > 0.0 ? accept * accept : 0.0;
   const Sample hit = tree_.nearest_bounded(p, accept_sq, limit_ * limit_);
   if (hit.squared_distance <= limit_ * limit_) return hit;
   return {kInfinity, spatial::AabbTree::kNoSlot};
@@ -244,10 +246,14 @@ bool SampledEnvelope::lattice_triangle(const Vec3d& a, const Vec3d& b, const Vec
   };
   // The whole triangle as one piece (n = 1) first: small triangles close to
   // the input need no lattice at all.
+  // A triangle too long to be taken whole only needs its corners within the
+  // threshold, and a search may stop at the first input triangle that near
+  // (else it looks for the nearest, which on long faces over fine input
+  // was most of the simplifier's envelope time).
   const double whole = limit_ - length * kInvSqrt3;
   double worst_corner_sq = 0.0;
   for (const Vec3d* corner : {&a, &b, &c}) {
-    const double d_sq = sample(*corner, whole).squared_distance;
+    const double d_sq = sample(*corner, whole >= 0.0 ? whole : threshold).squared_distance;
     if (d_sq > threshold_sq) return false;
     worst_corner_sq = std::max(worst_corner_sq, d_sq);
   }

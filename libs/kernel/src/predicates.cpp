@@ -43,6 +43,29 @@ int orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
   return sign_of(Epick::Orientation_3()(to_cgal(a), to_cgal(b), to_cgal(c), to_cgal(d)));
 }
 
+PlaneSideFilter::PlaneSideFilter(const Vec3d& a, const Vec3d& b, const Vec3d& c)
+    : a_(a), ab_(b - a), ac_(c - a), largest_(ab_.cwiseAbs().cwiseMax(ac_.cwiseAbs())) {
+  minor_ = ab_.x() * ac_.y() - ac_.x() * ab_.y();
+}
+
+// CGAL's static filter for Orientation_3 (Static_filters/Orientation_3.h):
+// the determinant of the rows b - a, c - a, p - a expanded as CGAL's
+// determinant() does, certified when larger than 5.1107127829973299e-15
+// times the largest |coordinate difference| per axis multiplied together,
+// unless those are small enough to underflow or large enough to overflow.
+int PlaneSideFilter::certain_sign(const Vec3d& p) const {
+  const Vec3d ap = p - a_;
+  const Vec3d largest = largest_.cwiseMax(ap.cwiseAbs());
+  const double smallest_axis = largest.minCoeff();
+  const double largest_axis = largest.maxCoeff();
+  if (smallest_axis < 1e-97 || largest_axis > 1e102) return 0;
+  const double m02 = ab_.x() * ap.y() - ap.x() * ab_.y();
+  const double m12 = ac_.x() * ap.y() - ap.x() * ac_.y();
+  const double det = minor_ * ap.z() - m02 * ac_.z() + m12 * ab_.z();
+  const double bound = 5.1107127829973299e-15 * largest.x() * largest.y() * largest.z();
+  return det > bound ? 1 : det < -bound ? -1 : 0;
+}
+
 int incircle(const Vec2d& a, const Vec2d& b, const Vec2d& c, const Vec2d& d) {
   return sign_of(Epick::Side_of_oriented_circle_2()(to_cgal(a), to_cgal(b), to_cgal(c), to_cgal(d)));
 }

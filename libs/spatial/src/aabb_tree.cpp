@@ -130,6 +130,11 @@ AabbTree::BoundedHit AabbTree::nearest_bounded(const Vec3d& p, double accept_sq,
   std::uint32_t found = kNoSlot;
   traverse(p, bound_sq, [&](std::uint32_t slot) {
     const Vec3d* c = &corners_[3 * std::size_t{slot}];
+    // The triangle's own box first: a leaf's box holds four, and long
+    // slivers in different directions leave most of it empty.
+    const Vec3d below = c[0].cwiseMin(c[1]).cwiseMin(c[2]) - p;
+    const Vec3d above = p - c[0].cwiseMax(c[1]).cwiseMax(c[2]);
+    if (below.cwiseMax(above).cwiseMax(0.0).squaredNorm() > bound_sq) return false;
     const double d_sq = squared_distance_to_triangle(p, c[0], c[1], c[2]);
     if (d_sq > bound_sq) return false;
     bound_sq = d_sq;

@@ -78,6 +78,12 @@ TEST_CASE("box grid queries agree with brute force through inserts, moves, erase
       REQUIRE(std::adjacent_find(found.begin(), found.end()) == found.end());
       REQUIRE(std::includes(found.begin(), found.end(), expected.begin(), expected.end()));
       for (const std::uint32_t f : found) REQUIRE(boxes[f].live);
+      // Unordered: the same ids, in any order, perhaps twice.
+      std::vector<std::uint32_t> unordered;
+      grid.query_unordered(query.lo, query.hi, unordered);
+      std::sort(unordered.begin(), unordered.end());
+      unordered.erase(std::unique(unordered.begin(), unordered.end()), unordered.end());
+      REQUIRE(unordered == found);
       nonempty += expected.empty() ? 0 : 1;
     }
   }

@@ -131,6 +131,37 @@ TEST_CASE("predicates stay exact for huge and tiny magnitudes", "[kernel]") {
   CHECK(orient3d(a, b, c, d) == reference_orient3d(a, b, c, d));
 }
 
+TEST_CASE("the prepared plane filter never contradicts orient3d and decides generic points", "[kernel]") {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int decided_generic = 0, decided_near = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const std::array<Vec3d, 4> near = near_coplanar(rng);
+    const Vec3d generic(unit(rng), unit(rng), unit(rng));
+    const PlaneSideFilter plane(near[0], near[1], near[2]);
+    for (const Vec3d& p : {near[3], generic, near[0]}) {
+      const int certain = plane.certain_sign(p);
+      if (certain != 0) REQUIRE(certain == reference_orient3d(near[0], near[1], near[2], p));
+    }
+    decided_generic += plane.certain_sign(generic) != 0;
+    decided_near += plane.certain_sign(near[3]) != 0;
+  }
+  CHECK(decided_generic > 19900);  // a random point is near the plane once in thousands
+  CHECK(decided_near < 200);       // within rounding of the plane: left to orient3d
+  // Magnitudes where the bound itself would underflow or overflow are left to orient3d.
+  for (double scale : {1e-300, 1e300}) {
+    const PlaneSideFilter plane(Vec3d(0, 0, 0) * scale, Vec3d(1, 0, 0) * scale, Vec3d(0, 1, 0) * scale);
+    CHECK(plane.certain_sign(Vec3d(0.25, 0.25, 1) * scale) == 0);
+  }
+  const PlaneSideFilter plane(Vec3d(0, 0, 0), Vec3d(1, 0, 0), Vec3d(0, 1, 0));
+  CHECK(plane.certain_sign(Vec3d(0.25, 0.25, 1)) == 1);
+  CHECK(plane.certain_sign(Vec3d(0.25, 0.25, -1)) == -1);
+  CHECK(plane.certain_sign(Vec3d(0.25, 0.25, 0)) == 0);
+  CHECK(plane.certainly_one_side(Vec3d(0, 0, 1), Vec3d(1, 0, 2), Vec3d(0, 1, 3)));
+  CHECK(!plane.certainly_one_side(Vec3d(0, 0, 1), Vec3d(1, 0, -2), Vec3d(0, 1, 3)));
+  CHECK(!plane.certainly_one_side(Vec3d(0, 0, 1), Vec3d(1, 0, 0), Vec3d(0, 1, 3)));
+}
+
 TEST_CASE("insphere and incircle are exact on cospherical points", "[kernel]") {
   // Integer points on the sphere of radius 9 around (0.5, 1024.25, -3),
   // scaled by 2^-10: exactly cospherical in doubles.

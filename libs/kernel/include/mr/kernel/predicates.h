@@ -48,6 +48,30 @@ inline int dominant_axis(const Vec3d& normal) {
   return axis;
 }
 
+/// The plane of a triangle (a, b, c), prepared for many questions about
+/// which side of it a point lies on: the sign of orient3d(a, b, c, p) where
+/// a floating-point evaluation certifies it, with the error bound of CGAL's
+/// static filter for this determinant (evaluated in the same order), and 0
+/// where it cannot (then ask orient3d). Half the arithmetic depends on the
+/// plane only and is done once.
+class PlaneSideFilter {
+ public:
+  PlaneSideFilter(const Vec3d& a, const Vec3d& b, const Vec3d& c);
+  /// +1 or -1 when certain, else 0 (p may be on the plane or near it).
+  int certain_sign(const Vec3d& p) const;
+  /// True when p, q and r are certainly all strictly on one side: a
+  /// triangle with these corners cannot meet triangle (a, b, c).
+  bool certainly_one_side(const Vec3d& p, const Vec3d& q, const Vec3d& r) const {
+    const int s = certain_sign(p);
+    return s != 0 && certain_sign(q) == s && certain_sign(r) == s;
+  }
+
+ private:
+  Vec3d a_, ab_, ac_;
+  Vec3d largest_;  ///< per axis, the largest |coordinate| of b - a and c - a
+  double minor_ = 0.0;
+};
+
 /// True if a, b and c lie on one line (or coincide), exactly.
 inline bool collinear(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
   return orient2d_projected(a, b, c, 0) == 0 && orient2d_projected(a, b, c, 1) == 0 &&

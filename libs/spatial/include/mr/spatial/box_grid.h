@@ -27,6 +27,10 @@ class BoxGrid {
   void erase(std::uint32_t id);
   /// The ids whose current box overlaps [lo, hi] (closed), sorted, without repeats.
   void query(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const;
+  /// The same ids in no particular order, some possibly twice (an id moved
+  /// within a cell): for callers that test each and only ask whether any
+  /// fails, and would spend a tenth of their time sorting.
+  void query_unordered(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const;
 
  private:
   // Faces spanning more cells than this go to a list every query visits.
