@@ -1,6 +1,7 @@
 #include <mr/spatial/improper_meetings.h>
 
 #include <mr/kernel/intersections.h>
+#include <mr/kernel/predicates.h>
 #include <mr/spatial/aabb_tree.h>
 
 #include <tbb/parallel_for.h>
@@ -20,11 +21,13 @@ std::vector<std::uint8_t> faces_meeting_others(const TriangleSoup& soup, std::sp
   tbb::parallel_for(std::size_t(0), soup.triangles.size(), [&](std::size_t f) {
     if (skipped(f) || (!asked.empty() && !asked[f])) return;
     const std::array<Vec3d, 3> p = soup.corners(f);
+    const PlaneSideFilter plane(p[0], p[1], p[2]);
     std::vector<std::uint32_t> near;
     tree.triangles_in_box(p[0].cwiseMin(p[1]).cwiseMin(p[2]), p[0].cwiseMax(p[1]).cwiseMax(p[2]), near);
     for (std::uint32_t g : near) {
       if (g == f || skipped(g)) continue;
       const std::array<Vec3d, 3> q = soup.corners(g);
+      if (plane.certainly_one_side(q[0], q[1], q[2])) continue;  // most candidates of long slivers
       if (intersect_triangles(p[0], p[1], p[2], q[0], q[1], q[2]).improper()) {
         meets[f] = 1;
         return;
