@@ -30,7 +30,10 @@ struct Candidate {
 class CollapseQueue {
  public:
   explicit CollapseQueue(const MeshState& state)
-      : state_(state), stamps_(state.mesh().n_halfedges(), 0), movable_(state.mesh().n_vertices(), 0) {}
+      : state_(state),
+        stamps_(state.mesh().n_halfedges(), 0),
+        queued_cost_(state.mesh().n_halfedges(), kNotQueued),
+        movable_(state.mesh().n_vertices(), 0) {}
 
   void fill_initially() {
     const TriMesh& mesh = state_.mesh();
@@ -46,15 +49,28 @@ class CollapseQueue {
     std::vector<Candidate> all;
     for (std::size_t i = 0; i < n; ++i)
       if (costs[i] >= 0.0) all.push_back({costs[i], static_cast<std::uint32_t>(i), 0});
+    queued_cost_ = std::move(costs);  // kNotQueued (-1) where not a candidate
     heap_ = Heap(std::greater<Candidate>(), std::move(all));
   }
 
   /// Queues h again; its from-vertex's fan must be unchanged since that
   /// vertex was last asked about (or was asked again through push_leaving).
+  /// An entry still queued at the same cost stays: it pops where a new one
+  /// would (the order is by cost, then halfedge), and the heap does not
+  /// fill with stale copies (a collapse queues every halfedge leaving its
+  /// one-ring again, and most keep their cost).
   void push(TriMesh::HalfedgeHandle h) {
     const auto i = static_cast<std::size_t>(h.idx());
+    if (!is_candidate(h)) {
+      ++stamps_[i];
+      queued_cost_[i] = kNotQueued;
+      return;
+    }
+    const double cost = state_.collapse_cost(h);
+    if (queued_cost_[i] == cost) return;
     ++stamps_[i];
-    if (is_candidate(h)) heap_.push({state_.collapse_cost(h), std::uint32_t(i), stamps_[i]});
+    queued_cost_[i] = cost;
+    heap_.push({cost, std::uint32_t(i), stamps_[i]});
   }
   /// Queues every halfedge leaving v again, after v's fan changed.
   void push_leaving(TriMesh::VertexHandle v) {
@@ -68,6 +84,7 @@ class CollapseQueue {
   /// put back up to 1024 a batch: a sixth of simplifying
   /// manifold/Generic_Twin went into sifting them through the heap).
   void put_back(std::vector<Candidate>&& popped) {
+    for (const Candidate& c : popped) queued_cost_[c.halfedge] = c.cost;
     popped.insert(popped.end(), waiting_.begin() + std::ptrdiff_t(next_waiting_), waiting_.end());
     waiting_ = std::move(popped);
     next_waiting_ = 0;
@@ -84,8 +101,9 @@ class CollapseQueue {
       } else {
         return false;
       }
-      if (out.stamp == stamps_[out.halfedge] && is_candidate(TriMesh::HalfedgeHandle(int(out.halfedge))))
-        return true;
+      if (out.stamp != stamps_[out.halfedge]) continue;  // stale
+      queued_cost_[out.halfedge] = kNotQueued;
+      if (is_candidate(TriMesh::HalfedgeHandle(int(out.halfedge)))) return true;
     }
   }
 
@@ -96,8 +114,10 @@ class CollapseQueue {
   }
 
   const MeshState& state_;
+  static constexpr double kNotQueued = -1.0;  ///< costs are never negative
   std::vector<std::uint32_t> stamps_;
-  std::vector<char> movable_;  ///< per vertex: may_collapse_from when last asked
+  std::vector<double> queued_cost_;  ///< per halfedge: the cost of its live entry, or kNotQueued
+  std::vector<char> movable_;        ///< per vertex: may_collapse_from when last asked
   Heap heap_;
   std::vector<Candidate> waiting_;  ///< put back, cheapest first, from next_waiting_ on
   std::size_t next_waiting_ = 0;
