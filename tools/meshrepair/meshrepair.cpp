@@ -283,13 +283,14 @@ struct RebuildInput {
 };
 
 // Tets, surface repair, the written file and its figures, in `mode` (which
-// becomes remesh where keeping the input costs too much).
+// becomes remesh where keeping the input costs too much, the reason kept in
+// in.keep_abandoned).
 void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
-                       const std::vector<std::string>& files, const RebuildInput& in, RebuildMode& mode,
+                       const std::vector<std::string>& files, RebuildInput& in, RebuildMode& mode,
                        std::ostream& out, std::ostream& err) {
   const TriangleSoup& input = in.input;
-  std::string abandoned = in.keep_abandoned;
-  const tetmesh::PipelineResult pipeline = tetrahedralize_for_repair(options, input, mode, abandoned, err);
+  const tetmesh::PipelineResult pipeline =
+      tetrahedralize_for_repair(options, input, mode, in.keep_abandoned, err);
   repair::RepairOptions repair_options =
       surface_repair_options(pipeline, options.tetrahedralize.threads, options.cleanup, mode);
   io::WriteOptions write_options = options.write;
@@ -316,7 +317,7 @@ void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
   if (!options.stats_path.empty())
     cli::write_stats_file(options.stats_path,
                           make_repair_stats({input, pipeline, repaired, written, provenance.summary,
-                                             in.seconds_read, seconds_write, in.declined, abandoned})
+                                             in.seconds_read, seconds_write, in.declined, in.keep_abandoned})
                               .dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << repaired.surface.triangles.size()

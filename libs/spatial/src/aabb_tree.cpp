@@ -21,6 +21,14 @@ double box_squared_distance(const AabbTree::Node& node, const Vec3d& p) {
   return sum;
 }
 
+// Squared distance from p to the box of the triangle with corners c[0..2]:
+// a lower bound of its distance to the triangle, for a few operations.
+double triangle_box_squared_distance(const Vec3d* c, const Vec3d& p) {
+  const Vec3d lo = c[0].cwiseMin(c[1]).cwiseMin(c[2]);
+  const Vec3d hi = c[0].cwiseMax(c[1]).cwiseMax(c[2]);
+  return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).squaredNorm();
+}
+
 // A median-split tree over fewer than 2^32 triangles is at most 32 levels deep.
 constexpr int kMaxStack = 64;
 
@@ -132,9 +140,7 @@ AabbTree::BoundedHit AabbTree::nearest_bounded(const Vec3d& p, double accept_sq,
     const Vec3d* c = &corners_[3 * std::size_t{slot}];
     // The triangle's own box first: a leaf's box holds four, and long
     // slivers in different directions leave most of it empty.
-    const Vec3d below = c[0].cwiseMin(c[1]).cwiseMin(c[2]) - p;
-    const Vec3d above = p - c[0].cwiseMax(c[1]).cwiseMax(c[2]);
-    if (below.cwiseMax(above).cwiseMax(0.0).squaredNorm() > bound_sq) return false;
+    if (triangle_box_squared_distance(c, p) > bound_sq) return false;
     const double d_sq = squared_distance_to_triangle(p, c[0], c[1], c[2]);
     if (d_sq > bound_sq) return false;
     bound_sq = d_sq;
@@ -159,11 +165,7 @@ bool AabbTree::one_triangle_near_all(std::span<const Vec3d> points, double r_sq)
     const Vec3d* c = &corners_[3 * std::size_t{slot}];
     // Most triangles near points[0] are far from another point: their box
     // says so before any exact distance, and the last points decide first.
-    const Vec3d lo = c[0].cwiseMin(c[1]).cwiseMin(c[2]);
-    const Vec3d hi = c[0].cwiseMax(c[1]).cwiseMax(c[2]);
-    const auto box_near = [&](const Vec3d& p) {
-      return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).squaredNorm() <= r_sq;
-    };
+    const auto box_near = [&](const Vec3d& p) { return triangle_box_squared_distance(c, p) <= r_sq; };
     if (!std::all_of(points.begin(), points.end(), box_near)) return false;
     found = std::all_of(points.rbegin(), points.rend(), [&](const Vec3d& p) {
       return squared_distance_to_triangle(p, c[0], c[1], c[2]) <= r_sq;

@@ -96,8 +96,8 @@ void check_budget(std::size_t tets, std::size_t tets_before, std::size_t done, s
                             std::to_string(n) + " triangles";
   if (over) throw InsertionTooCostly("insertion: more than " + std::to_string(max_tets) + ": " + after);
   throw InsertionTooCostly("insertion: on course for " + std::to_string(std::llround(projected)) +
-                           " tets, more than 4 times its budget of " + std::to_string(max_tets) + ": " +
-                           after);
+                           " tets, more than " + std::to_string(std::llround(kProjectedOver)) +
+                           " times its budget of " + std::to_string(max_tets) + ": " + after);
 }
 
 }  // namespace
