@@ -102,7 +102,9 @@ double longest_edge_length(const std::array<Vec3d, 3>& v) { return longest_edge(
 
 SampledEnvelope::SampledEnvelope(const TriangleSoup& input, const EnvelopeOptions& options) {
   check_options(options);
-  tree_ = spatial::AabbTree(input);
+  // Envelope queries are distances near the input: a soup's triangles span
+  // the model, and without pieces every sample visited most of them.
+  tree_ = spatial::AabbTree(input, {.cut_large_triangles = true});
   epsilon_ = options.epsilon;
   const double d = options.sampling_step > 0.0 ? options.sampling_step : options.epsilon;
   step_ = d / options.stage;

@@ -2,6 +2,14 @@
 // count makes the size of every subtree a function of its triangle count
 // alone, so both halves can be built in parallel straight into their final
 // slots of the depth-first node array: parallel and deterministic.
+//
+// The tree is built over pieces of triangles, one per triangle unless
+// AabbTreeOptions::cut_large_triangles: then a triangle much larger than the
+// tree's boxes should be (a soup's triangles span the whole model) is cut by
+// longest-edge bisection into pieces whose boxes cover it, so a query near
+// one end no longer visits it from everywhere in its box. Every piece keeps
+// its triangle's corners: distances are to the whole triangle, and only the
+// pruning sees the pieces.
 
 #include <mr/core/errors.h>
 #include <mr/spatial/aabb_tree.h>
@@ -10,7 +18,9 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace mr::spatial {
@@ -19,6 +29,16 @@ namespace {
 
 constexpr std::uint32_t kLeafSize = 4;
 constexpr std::uint32_t kParallelBuildSize = 8192;
+
+// AabbTreeOptions::cut_large_triangles: pieces are cut until their longest
+// edge is at most the tree's extent over kPiecesAcross (or twice that, and
+// so on, until all fit in the budget: the triangles plus kExtraPieces).
+constexpr double kPiecesAcross = 128.0;
+constexpr std::size_t kExtraPieces = std::size_t{1} << 16;
+// How much a piece's box grows, relative to the triangle's largest coordinate.
+constexpr double kPieceBoxMargin = 1e-12;
+// The deepest bisection: 2^20 pieces would exceed any budget anyway.
+constexpr int kMaxBisections = 20;
 
 // Subtree sizes (node counts) by depth. At depth k every range holds
 // either `small` or `small + 1` triangles, so two numbers a level suffice.
@@ -67,6 +87,49 @@ void grow(AabbTree::Node& node, const AabbTree::Node& child) {
   }
 }
 
+double longest_edge(const std::array<Vec3d, 3>& c) {
+  return std::sqrt(
+      std::max({(c[1] - c[0]).squaredNorm(), (c[2] - c[1]).squaredNorm(), (c[0] - c[2]).squaredNorm()}));
+}
+
+// The two halves of c split at the midpoint of its longest edge (the first
+// longest on ties, so the cut is fixed).
+std::array<std::array<Vec3d, 3>, 2> bisected(const std::array<Vec3d, 3>& c) {
+  int longest = 0;
+  double best = -1.0;
+  for (int i = 0; i < 3; ++i) {
+    const double length = (c[(i + 1) % 3] - c[i]).squaredNorm();
+    if (length > best) best = length, longest = i;
+  }
+  const Vec3d& a = c[longest];
+  const Vec3d& b = c[(longest + 1) % 3];
+  const Vec3d& apex = c[(longest + 2) % 3];
+  const Vec3d middle = 0.5 * (a + b);
+  return {{{a, middle, apex}, {middle, b, apex}}};
+}
+
+// The number of pieces cut_into_pieces makes of c, or some number above
+// `limit` when that is more.
+std::size_t count_pieces(const std::array<Vec3d, 3>& c, double size, int depth, std::size_t limit) {
+  if (depth == kMaxBisections || longest_edge(c) <= size) return 1;
+  const std::array<std::array<Vec3d, 3>, 2> halves = bisected(c);
+  const std::size_t first = count_pieces(halves[0], size, depth + 1, limit);
+  if (first > limit) return first;
+  return first + count_pieces(halves[1], size, depth + 1, limit - first);
+}
+
+// Calls emit(piece) for every piece of triangle c, cut by longest-edge
+// bisection until the longest edge is at most `size`, or for c itself when
+// it already is.
+template <class Emit>
+void cut_into_pieces(const std::array<Vec3d, 3>& c, double size, int depth, Emit&& emit) {
+  if (depth == kMaxBisections || longest_edge(c) <= size) {
+    emit(c);
+    return;
+  }
+  for (const std::array<Vec3d, 3>& half : bisected(c)) cut_into_pieces(half, size, depth + 1, emit);
+}
+
 void validate(const TriangleSoup& soup) {
   if (soup.triangles.size() >= kNoTriangle) throw UsageError("AabbTree: too many triangles");
   for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
@@ -86,30 +149,85 @@ void validate(const TriangleSoup& soup) {
 
 class AabbBuilder {
  public:
-  AabbBuilder(const TriangleSoup& soup, AabbTree& tree) : soup_(soup), tree_(tree) {}
+  AabbBuilder(const TriangleSoup& soup, const AabbTreeOptions& options, AabbTree& tree)
+      : soup_(soup), options_(options), tree_(tree) {}
 
   void build() {
     const auto n = static_cast<std::uint32_t>(soup_.triangles.size());
     if (n == 0) return;
+    tree_.triangle_count_ = n;
     prepare_primitives(n);
-    const SubtreeSizes sizes(n);
+    const auto slots = static_cast<std::uint32_t>(order_.size());
+    const SubtreeSizes sizes(slots);
     sizes_ = &sizes;
-    tree_.nodes_.resize(sizes.nodes(0, n));
+    tree_.nodes_.resize(sizes.nodes(0, slots));
     AabbBox centroids;
     for (const Primitive& primitive : order_) grow(centroids, primitive.centroid);
-    build_node(0, 0, n, 0, centroids);
-    store_triangles(n);
+    build_node(0, 0, slots, 0, centroids);
+    store_slots(slots);
   }
 
  private:
+  std::array<Vec3d, 3> corners(std::uint32_t t) const {
+    const Triangle& f = soup_.triangles[t];
+    return {soup_.positions[f[0]], soup_.positions[f[1]], soup_.positions[f[2]]};
+  }
+
+  // The longest edge a piece may have, and per triangle its number of
+  // pieces: the tree's extent / kPiecesAcross, doubled until the pieces fit
+  // the budget (a count stops as soon as it is over). Infinite (one piece
+  // each) without cutting.
+  double piece_size(std::vector<std::size_t>& counts) const {
+    std::fill(counts.begin(), counts.end(), std::size_t{1});
+    if (!options_.cut_large_triangles) return std::numeric_limits<double>::infinity();
+    AabbBox all;
+    for (const Triangle& f : soup_.triangles)
+      for (Index v : f) grow(all, soup_.positions[v]);
+    const double extent = (all.hi - all.lo).maxCoeff();
+    const std::size_t budget = counts.size() + kExtraPieces;
+    for (double size = extent / kPiecesAcross;; size *= 2.0) {
+      // Pieces as long as the extent: a few per triangle, over budget or not.
+      const bool last = !(size < extent);
+      std::size_t total = 0;
+      for (std::size_t t = 0; t < counts.size() && (last || total <= budget); ++t) {
+        const std::size_t limit = last ? std::numeric_limits<std::size_t>::max() : budget - total;
+        counts[t] = count_pieces(corners(static_cast<std::uint32_t>(t)), size, 0, limit);
+        total += counts[t];
+      }
+      if (last || total <= budget) return size;
+    }
+  }
+
+  // One primitive per piece, pieces of one triangle in a row, triangles in
+  // order: the same list whatever the thread count.
   void prepare_primitives(std::uint32_t n) {
-    boxes_.resize(n);
-    order_.resize(n);
+    std::vector<std::size_t> counts(n);
+    const double size = piece_size(counts);
+    std::vector<std::size_t> first(n + 1, 0);
+    for (std::uint32_t t = 0; t < n; ++t) first[t + 1] = first[t] + counts[t];
+    boxes_.resize(first[n]);
+    order_.resize(first[n]);
     tbb::parallel_for(std::uint32_t{0}, n, [&](std::uint32_t t) {
-      AabbBox box;
-      for (Index v : soup_.triangles[t]) grow(box, soup_.positions[v]);
-      boxes_[t] = box;
-      order_[t] = {0.5 * (box.lo + box.hi), t};
+      const std::array<Vec3d, 3> c = corners(t);
+      AabbBox whole;
+      for (const Vec3d& p : c) grow(whole, p);
+      // Rounded midpoints drift by a few units in the last place per cut:
+      // far less than this margin, so the pieces' boxes cover the triangle.
+      const double margin =
+          kPieceBoxMargin * std::max(whole.lo.cwiseAbs().maxCoeff(), whole.hi.cwiseAbs().maxCoeff());
+      std::size_t slot = first[t];
+      cut_into_pieces(c, size, 0, [&](const std::array<Vec3d, 3>& piece) {
+        AabbBox box = whole;
+        if (counts[t] > 1) {
+          AabbBox own;
+          for (const Vec3d& p : piece) grow(own, p);
+          box.lo = whole.lo.cwiseMax(own.lo - Vec3d::Constant(margin));
+          box.hi = whole.hi.cwiseMin(own.hi + Vec3d::Constant(margin));
+        }
+        boxes_[slot] = box;
+        order_[slot] = {0.5 * (box.lo + box.hi), static_cast<std::uint32_t>(slot), t};
+        ++slot;
+      });
     });
   }
 
@@ -130,7 +248,7 @@ class AabbBuilder {
                      [axis](const Primitive& i, const Primitive& j) {
                        const double ci = i.centroid[axis];
                        const double cj = j.centroid[axis];
-                       return ci < cj || (ci == cj && i.id < j.id);
+                       return ci < cj || (ci == cj && i.piece < j.piece);
                      });
     const std::uint32_t left = node + 1;
     const std::uint32_t right = left + sizes_->nodes(depth + 1, mid - begin);
@@ -153,8 +271,8 @@ class AabbBuilder {
   void make_leaf(AabbTree::Node& out, std::uint32_t begin, std::uint32_t end) const {
     AabbBox box;
     for (std::uint32_t s = begin; s < end; ++s) {
-      box.lo = box.lo.cwiseMin(boxes_[order_[s].id].lo);
-      box.hi = box.hi.cwiseMax(boxes_[order_[s].id].hi);
+      box.lo = box.lo.cwiseMin(boxes_[order_[s].piece].lo);
+      box.hi = box.hi.cwiseMax(boxes_[order_[s].piece].hi);
     }
     for (int k = 0; k < 3; ++k) {
       out.lo[k] = box.lo[k];
@@ -164,31 +282,35 @@ class AabbBuilder {
     out.count = end - begin;
   }
 
-  void store_triangles(std::uint32_t n) {
-    tree_.corners_.resize(std::size_t{3} * n);
-    tree_.triangle_ids_.resize(n);
-    tbb::parallel_for(std::uint32_t{0}, n, [&](std::uint32_t slot) {
-      const std::uint32_t t = order_[slot].id;
-      tree_.triangle_ids_[slot] = t;
+  void store_slots(std::uint32_t slots) {
+    tree_.corners_.resize(std::size_t{3} * slots);
+    tree_.triangle_ids_.resize(slots);
+    if (slots != tree_.triangle_count_) tree_.slot_boxes_.resize(slots);
+    tbb::parallel_for(std::uint32_t{0}, slots, [&](std::uint32_t slot) {
+      const Primitive& primitive = order_[slot];
+      tree_.triangle_ids_[slot] = primitive.triangle;
+      if (!tree_.slot_boxes_.empty()) tree_.slot_boxes_[slot] = boxes_[primitive.piece];
       for (int k = 0; k < 3; ++k)
-        tree_.corners_[3 * std::size_t{slot} + k] = soup_.positions[soup_.triangles[t][k]];
+        tree_.corners_[3 * std::size_t{slot} + k] = soup_.positions[soup_.triangles[primitive.triangle][k]];
     });
   }
 
   const TriangleSoup& soup_;
+  const AabbTreeOptions& options_;
   AabbTree& tree_;
   struct Primitive {
     Vec3d centroid;
-    std::uint32_t id;
+    std::uint32_t piece;     ///< index into boxes_
+    std::uint32_t triangle;  ///< the soup's
   };
   const SubtreeSizes* sizes_ = nullptr;
   std::vector<AabbBox> boxes_;
   std::vector<Primitive> order_;  // permuted into leaf order by the build
 };
 
-AabbTree::AabbTree(const TriangleSoup& soup) {
+AabbTree::AabbTree(const TriangleSoup& soup, const AabbTreeOptions& options) {
   validate(soup);
-  AabbBuilder(soup, *this).build();
+  AabbBuilder(soup, options, *this).build();
 }
 
 }  // namespace mr::spatial

@@ -5,6 +5,7 @@
 #include <mr/spatial/triangle_distance.h>
 
 #include <algorithm>
+#include <utility>
 
 namespace mr::spatial {
 
@@ -27,6 +28,16 @@ double triangle_box_squared_distance(const Vec3d* c, const Vec3d& p) {
   const Vec3d lo = c[0].cwiseMin(c[1]).cwiseMin(c[2]);
   const Vec3d hi = c[0].cwiseMax(c[1]).cwiseMax(c[2]);
   return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).squaredNorm();
+}
+
+double box_squared_distance(const AabbBox& box, const Vec3d& p) {
+  return (box.lo - p).cwiseMax(p - box.hi).cwiseMax(0.0).squaredNorm();
+}
+
+// Drops the repeats (pieces of one triangle) from out[from, end), sorted.
+void keep_each_once(std::vector<std::uint32_t>& out, std::size_t from) {
+  std::sort(out.begin() + static_cast<std::ptrdiff_t>(from), out.end());
+  out.erase(std::unique(out.begin() + static_cast<std::ptrdiff_t>(from), out.end()), out.end());
 }
 
 // A median-split tree over fewer than 2^32 triangles is at most 32 levels deep.
@@ -123,7 +134,7 @@ std::vector<std::uint32_t> AabbTree::triangles_within(const Vec3d& p, double r) 
     if (squared_distance_to_triangle(p, c[0], c[1], c[2]) <= r * r) found.push_back(triangle_ids_[slot]);
     return false;
   });
-  std::sort(found.begin(), found.end());
+  keep_each_once(found, 0);
   return found;
 }
 
@@ -138,9 +149,9 @@ AabbTree::BoundedHit AabbTree::nearest_bounded(const Vec3d& p, double accept_sq,
   std::uint32_t found = kNoSlot;
   traverse(p, bound_sq, [&](std::uint32_t slot) {
     const Vec3d* c = &corners_[3 * std::size_t{slot}];
-    // The triangle's own box first: a leaf's box holds four, and long
+    // The piece's own box first: a leaf's box holds four, and long
     // slivers in different directions leave most of it empty.
-    if (triangle_box_squared_distance(c, p) > bound_sq) return false;
+    if (box_squared_distance(slot_box(slot), p) > bound_sq) return false;
     const double d_sq = squared_distance_to_triangle(p, c[0], c[1], c[2]);
     if (d_sq > bound_sq) return false;
     bound_sq = d_sq;
@@ -161,7 +172,9 @@ bool AabbTree::one_triangle_near_all(std::span<const Vec3d> points, double r_sq)
   if (!(r_sq >= 0.0) || points.empty()) return false;
   double bound_sq = r_sq;  // never shrinks: every triangle near points[0] is a candidate
   bool found = false;
+  std::uint32_t last_triangle = kNoTriangle;  // pieces of one triangle often come in a row
   traverse(points[0], bound_sq, [&](std::uint32_t slot) {
+    if (std::exchange(last_triangle, triangle_ids_[slot]) == triangle_ids_[slot]) return false;
     const Vec3d* c = &corners_[3 * std::size_t{slot}];
     // Most triangles near points[0] are far from another point: their box
     // says so before any exact distance, and the last points decide first.
@@ -183,6 +196,7 @@ void AabbTree::triangles_in_box(const Vec3d& lo, const Vec3d& hi, std::vector<st
     return meets(Vec3d(node.lo[0], node.lo[1], node.lo[2]), Vec3d(node.hi[0], node.hi[1], node.hi[2]));
   };
   if (nodes_.empty() || !node_meets(nodes_[0])) return;
+  const std::size_t from = out.size();
   std::uint32_t stack[kMaxStack];
   int top = 0;
   stack[top++] = 0;
@@ -191,15 +205,15 @@ void AabbTree::triangles_in_box(const Vec3d& lo, const Vec3d& hi, std::vector<st
     const Node& node = nodes_[index];
     if (node.count != 0) {
       for (std::uint32_t slot = node.first_or_right; slot < node.first_or_right + node.count; ++slot) {
-        const Vec3d* c = &corners_[3 * std::size_t{slot}];
-        if (meets(c[0].cwiseMin(c[1]).cwiseMin(c[2]), c[0].cwiseMax(c[1]).cwiseMax(c[2])))
-          out.push_back(triangle_ids_[slot]);
+        const AabbBox box = slot_box(slot);
+        if (meets(box.lo, box.hi)) out.push_back(triangle_ids_[slot]);
       }
       continue;
     }
     for (const std::uint32_t child : {index + 1, node.first_or_right})
       if (node_meets(nodes_[child])) stack[top++] = child;
   }
+  if (has_pieces()) keep_each_once(out, from);
 }
 
 bool AabbTree::any_within(const Vec3d& p, double r) const {

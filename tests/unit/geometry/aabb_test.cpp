@@ -6,6 +6,7 @@
 
 #include "test_support.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <thread>
@@ -112,7 +113,8 @@ TEST_CASE("AABB tree agrees with brute force on random soups", "[aabb]") {
   std::mt19937_64 rng(42);
   for (const int count : {1, 2, 5, 100, 3000}) {
     const mr::TriangleSoup soup = random_soup(rng, count);
-    const AabbTree tree(soup);
+    const bool cut = count % 2 == 0;  // the larger triangles cut into pieces in 2, 100 and 3000
+    const AabbTree tree(soup, {.cut_large_triangles = cut});
     REQUIRE(tree.num_triangles() == soup.triangles.size());
     for (int q = 0; q < 400; ++q) {
       const Vec3d p = random_point(rng, q % 4 == 0 ? -3.0 : -0.1, q % 4 == 0 ? 4.0 : 1.1);
@@ -146,7 +148,7 @@ TEST_CASE("AABB tree agrees with brute force on random soups", "[aabb]") {
 TEST_CASE("AABB tree: one triangle near all points agrees with brute force", "[aabb]") {
   std::mt19937_64 rng(7);
   const mr::TriangleSoup soup = random_soup(rng, 300);
-  const AabbTree tree(soup);
+  const AabbTree tree(soup, {.cut_large_triangles = true});
   int near_count = 0;
   for (int q = 0; q < 600; ++q) {
     // Near a random triangle, so that both answers occur.
@@ -259,4 +261,77 @@ TEST_CASE("AABB tree: build is deterministic", "[aabb]") {
     REQUIRE(a.triangle == b.triangle);
     REQUIRE(a.squared_distance == b.squared_distance);
   }
+}
+
+// Triangles as wide as the soup and long thin slivers across it: the build
+// cuts them into pieces, and every query must still answer for the whole
+// triangle, each triangle once.
+TEST_CASE("AABB tree: triangles spanning the soup agree with brute force", "[aabb]") {
+  std::mt19937_64 rng(5);
+  mr::TriangleSoup soup;
+  for (int t = 0; t < 60; ++t) {
+    const Vec3d a = random_point(rng, 0.0, 1.0);
+    const Vec3d b = random_point(rng, 0.0, 1.0);
+    const Vec3d c =
+        t % 2 == 0 ? random_point(rng, 0.0, 1.0) : a + 0.3 * (b - a) + random_point(rng, -1e-3, 1e-3);
+    const auto first = static_cast<mr::Index>(soup.positions.size());
+    soup.positions.insert(soup.positions.end(), {a, b, c});
+    soup.triangles.push_back({first, first + 1, first + 2});
+  }
+  const AabbTree tree(soup, {.cut_large_triangles = true});
+  REQUIRE(tree.num_triangles() == soup.triangles.size());
+  const auto distance_sq = [&](std::uint32_t t, const Vec3d& p) {
+    const auto& f = soup.triangles[t];
+    return closest_on_triangle(p, soup.positions[f[0]], soup.positions[f[1]], soup.positions[f[2]])
+        .squared_distance;
+  };
+  int boxes_with_triangles = 0;
+  for (int q = 0; q < 300; ++q) {
+    const Vec3d p = random_point(rng, -0.2, 1.2);
+    const BruteHit expected = brute_force(soup, p);
+    REQUIRE(close_relative(tree.closest(p).squared_distance, expected.squared_distance));
+    const double r = std::sqrt(expected.squared_distance);
+    CHECK(
+        close_relative(tree.squared_distance_bounded(p, 0.25 * r * r, 4 * r * r), expected.squared_distance));
+
+    const double radius = 0.05;
+    std::vector<std::uint32_t> near;
+    for (std::uint32_t t = 0; t < soup.triangles.size(); ++t)
+      if (distance_sq(t, p) <= radius * radius) near.push_back(t);
+    CHECK(tree.triangles_within(p, radius) == near);
+
+    // Every triangle with a point in the box is listed, once, and no
+    // triangle whose own box misses it.
+    const Vec3d lo = p - Vec3d::Constant(radius), hi = p + Vec3d::Constant(radius);
+    std::vector<std::uint32_t> in_box;
+    tree.triangles_in_box(lo, hi, in_box);
+    std::vector<std::uint32_t> sorted = in_box;
+    std::sort(sorted.begin(), sorted.end());
+    CHECK(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end());
+    for (std::uint32_t t = 0; t < soup.triangles.size(); ++t) {
+      const auto& f = soup.triangles[t];
+      const Vec3d &a = soup.positions[f[0]], &b = soup.positions[f[1]], &c = soup.positions[f[2]];
+      const bool listed = std::binary_search(sorted.begin(), sorted.end(), t);
+      const bool own_box_meets = (a.cwiseMin(b).cwiseMin(c).array() <= hi.array()).all() &&
+                                 (lo.array() <= a.cwiseMax(b).cwiseMax(c).array()).all();
+      CHECK((own_box_meets || !listed));
+      bool has_point_inside = false;
+      for (int i = 0; i <= 40 && !has_point_inside; ++i)
+        for (int j = 0; i + j <= 40 && !has_point_inside; ++j) {
+          const Vec3d x = a + (i / 40.0) * (b - a) + (j / 40.0) * (c - a);
+          has_point_inside = (x.array() >= lo.array()).all() && (x.array() <= hi.array()).all();
+        }
+      if (has_point_inside) CHECK(listed);
+    }
+    boxes_with_triangles += !in_box.empty();
+
+    const std::array<Vec3d, 2> pair{p, p + random_point(rng, -0.1, 0.1)};
+    bool expected_near_all = false;
+    for (std::uint32_t t = 0; t < soup.triangles.size(); ++t)
+      expected_near_all = expected_near_all || (distance_sq(t, pair[0]) <= radius * radius &&
+                                                distance_sq(t, pair[1]) <= radius * radius);
+    CHECK(tree.one_triangle_near_all(pair, radius * radius) == expected_near_all);
+  }
+  CHECK(boxes_with_triangles > 50);  // both answers occur
+  CHECK(boxes_with_triangles < 250);
 }

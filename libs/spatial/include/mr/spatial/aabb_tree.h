@@ -29,6 +29,16 @@ struct AabbBox {
   Vec3d hi = Vec3d::Constant(-std::numeric_limits<double>::infinity());
 };
 
+struct AabbTreeOptions {
+  /// Cut triangles much longer than the soup's extent / 128 into pieces
+  /// (longest-edge bisection, a few MB of them at most), each with its own
+  /// box in the tree; queries still measure the whole triangle. Distance
+  /// queries near a soup of huge triangles or long slivers then visit only
+  /// the pieces nearby instead of every triangle whose box holds the point.
+  /// Box queries (triangles_in_box) gain little and pay to drop the repeats.
+  bool cut_large_triangles = false;
+};
+
 class AabbTree {
  public:
   /// An empty tree: every query finds nothing.
@@ -36,9 +46,9 @@ class AabbTree {
   /// Builds over every triangle of `soup`, degenerate ones included; the
   /// build is parallel (TBB) and deterministic. Throws mr::UsageError on an
   /// index out of range or a non-finite coordinate of a used vertex.
-  explicit AabbTree(const TriangleSoup& soup);
+  explicit AabbTree(const TriangleSoup& soup, const AabbTreeOptions& options = {});
 
-  std::size_t num_triangles() const { return triangle_ids_.size(); }
+  std::size_t num_triangles() const { return triangle_count_; }
   bool empty() const { return triangle_ids_.empty(); }
   /// Box of all triangles (empty box for an empty tree).
   AabbBox bounds() const;
@@ -54,9 +64,11 @@ class AabbTree {
   /// The triangles (soup indices, increasing) with a point at distance <= r from p.
   std::vector<std::uint32_t> triangles_within(const Vec3d& p, double r) const;
 
-  /// Appends to `out` the triangles (soup indices, in tree order) whose
-  /// bounding box meets the closed box [lo, hi]. Boxes are compared exactly,
-  /// so every triangle that meets the box is among them.
+  /// Appends to `out` the triangles (soup indices, each once) whose
+  /// bounding box, or for a triangle the build cut into pieces the box of a
+  /// piece, meets the closed box [lo, hi]: in tree order, or increasing
+  /// when the tree has pieces. Boxes are compared exactly, so every triangle
+  /// that meets the box is among them.
   void triangles_in_box(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const;
 
   /// True when some triangle has a point at distance <= r from p. Stops at
@@ -99,11 +111,24 @@ class AabbTree {
   template <class Visitor>
   void traverse(const Vec3d& p, double& bound_sq, Visitor&& visit) const;
 
+  /// Whether some triangle was cut into pieces (aabb_build.cpp): then one
+  /// triangle fills several slots.
+  bool has_pieces() const { return triangle_ids_.size() != triangle_count_; }
+
   std::vector<Node> nodes_;                  // depth-first order, root first
-  std::vector<Vec3d> corners_;               // 3 per triangle slot, in leaf order
+  std::vector<Vec3d> corners_;               // 3 per slot (its whole triangle's), in leaf order
   std::vector<std::uint32_t> triangle_ids_;  // soup index of each slot
+  std::vector<AabbBox> slot_boxes_;          // box of each slot's piece; empty without pieces
+  AabbBox slot_box(std::uint32_t slot) const;
+  std::size_t triangle_count_ = 0;
 
   friend class AabbBuilder;
 };
+
+inline AabbBox AabbTree::slot_box(std::uint32_t slot) const {
+  if (!slot_boxes_.empty()) return slot_boxes_[slot];
+  const Vec3d* c = &corners_[3 * std::size_t{slot}];
+  return {c[0].cwiseMin(c[1]).cwiseMin(c[2]), c[0].cwiseMax(c[1]).cwiseMax(c[2])};
+}
 
 }  // namespace mr::spatial
