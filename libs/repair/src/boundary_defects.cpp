@@ -14,7 +14,31 @@ struct EdgeUse {
   int corner_a, corner_b;  // corners of the face holding a and b
 };
 
-std::vector<EdgeUse> edge_uses(std::span<const Triangle> triangles) {
+// Rearranges `items` by key(item) in 0..keys-1, keeping their order within
+// a key (counting sort), and returns where each key's run begins (keys + 1
+// offsets). Run once per round of the manifold fix over every boundary
+// corner: a comparison sort of them was most of its time on soups.
+template <class T, class Key>
+std::vector<std::size_t> group_by_key(std::vector<T>& items, std::size_t keys, Key&& key) {
+  std::vector<std::size_t> begin(keys + 1, 0);
+  for (const T& item : items) ++begin[key(item) + 1];
+  for (std::size_t k = 0; k < keys; ++k) begin[k + 1] += begin[k];
+  std::vector<T> grouped(items.size());
+  std::vector<std::size_t> next(begin.begin(), begin.end() - 1);
+  for (const T& item : items) grouped[next[key(item)]++] = item;
+  items = std::move(grouped);
+  return begin;
+}
+
+Index vertex_count(std::span<const Triangle> triangles) {
+  Index largest = 0;
+  for (const Triangle& t : triangles) largest = std::max({largest, t[0], t[1], t[2]});
+  return triangles.empty() ? 0 : largest + 1;
+}
+
+// Every edge of every face once per face, sorted by (a, b, face): grouped
+// by a in face order, then each vertex's few edges sorted by b.
+std::vector<EdgeUse> edge_uses(std::span<const Triangle> triangles, Index vertices) {
   std::vector<EdgeUse> uses;
   uses.reserve(3 * triangles.size());
   for (std::size_t f = 0; f < triangles.size(); ++f)
@@ -23,9 +47,12 @@ std::vector<EdgeUse> edge_uses(std::span<const Triangle> triangles) {
       if (triangles[f][ca] > triangles[f][cb]) std::swap(ca, cb);
       uses.push_back({triangles[f][ca], triangles[f][cb], f, ca, cb});
     }
-  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-    return std::tie(x.a, x.b, x.face) < std::tie(y.a, y.b, y.face);
-  });
+  const std::vector<std::size_t> begin = group_by_key(uses, vertices, [](const EdgeUse& u) { return u.a; });
+  for (Index v = 0; v < vertices; ++v)
+    std::sort(
+        uses.begin() + static_cast<std::ptrdiff_t>(begin[v]),
+        uses.begin() + static_cast<std::ptrdiff_t>(begin[v + 1]),
+        [](const EdgeUse& x, const EdgeUse& y) { return std::tie(x.b, x.face) < std::tie(y.b, y.face); });
   return uses;
 }
 
@@ -33,7 +60,8 @@ std::vector<EdgeUse> edge_uses(std::span<const Triangle> triangles) {
 
 BoundaryDefects find_boundary_defects(std::span<const Triangle> triangles) {
   BoundaryDefects defects;
-  const std::vector<EdgeUse> uses = edge_uses(triangles);
+  const Index vertices = vertex_count(triangles);
+  const std::vector<EdgeUse> uses = edge_uses(triangles, vertices);
   UnionFind corners(3 * triangles.size());  // over face corners, 3 per face
   for (std::size_t i = 0; i < uses.size();) {
     std::size_t j = i + 1;
@@ -46,16 +74,19 @@ BoundaryDefects find_boundary_defects(std::span<const Triangle> triangles) {
     }
     i = j;
   }
+  // A vertex is non-manifold when its corners fall into more than one fan.
   std::vector<std::pair<Index, std::size_t>> fans;  // (vertex, root of one of its corners)
   fans.reserve(3 * triangles.size());
   for (std::size_t f = 0; f < triangles.size(); ++f)
     for (int c = 0; c < 3; ++c) fans.emplace_back(triangles[f][c], corners.find(3 * f + c));
-  std::sort(fans.begin(), fans.end());
-  fans.erase(std::unique(fans.begin(), fans.end()), fans.end());
-  for (std::size_t i = 1; i < fans.size(); ++i)
-    if (fans[i].first == fans[i - 1].first &&
-        (defects.nonmanifold_vertices.empty() || defects.nonmanifold_vertices.back() != fans[i].first))
-      defects.nonmanifold_vertices.push_back(fans[i].first);
+  const std::vector<std::size_t> begin =
+      group_by_key(fans, vertices, [](const auto& fan) { return fan.first; });
+  for (Index v = 0; v < vertices; ++v) {
+    const auto first = fans.begin() + static_cast<std::ptrdiff_t>(begin[v]);
+    const auto last = fans.begin() + static_cast<std::ptrdiff_t>(begin[v + 1]);
+    if (std::any_of(first, last, [&](const auto& fan) { return fan.second != first->second; }))
+      defects.nonmanifold_vertices.push_back(v);
+  }
   return defects;
 }
 

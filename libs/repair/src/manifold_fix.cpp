@@ -38,10 +38,11 @@ std::size_t split_round(TetMesh& mesh, std::vector<TetState>& states, const Face
                         const std::vector<FaceRef>& boundary, const BoundaryDefects& defects,
                         double max_move) {
   const VertexStars stars(mesh.tets, mesh.positions.size());
-  const spatial::BoxGrid grid = grid_of_boundary(mesh, boundary, max_move);
+  const std::vector<Index> to_split = defect_vertices(defects);
+  const spatial::BoxGrid grid = grid_of_boundary(mesh, boundary, max_move, stars, to_split);
   const SplitContext context{mesh, neighbours, states, boundary, max_move, grid};
   std::size_t copies = 0;
-  for (Index v : defect_vertices(defects)) copies += split_vertex(context, v, stars.of(v));
+  for (Index v : to_split) copies += split_vertex(context, v, stars.of(v));
   return copies;
 }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace mr::repair::detail {
 namespace {
@@ -133,8 +134,78 @@ bool move_into_class(const SplitContext& context, Index w, std::span<const Index
 
 }  // namespace
 
-spatial::BoxGrid grid_of_boundary(const TetMesh& mesh, const std::vector<FaceRef>& boundary,
-                                  double max_move) {
+namespace {
+
+// Where the boundary faces of a split of v can reach during a round: its
+// star's corners as they are now, grown by max_move (v's copy and every
+// corner that is itself a copy made this round move at most that far).
+Box split_reach(const TetMesh& mesh, std::span<const Index> star, double max_move) {
+  Box reach;
+  for (Index t : star)
+    for (Index u : mesh.tets[t]) reach.add(mesh.positions[u]);
+  reach.lo.array() -= max_move;
+  reach.hi.array() += max_move;
+  return reach;
+}
+
+// A coarse map of where splits may reach: kCells^3 cells over `bounds`, a
+// cell marked when a reach box meets it. Conservative: a box that meets a
+// reach box meets a marked cell.
+class ReachMap {
+ public:
+  ReachMap(const Box& bounds, const std::vector<Box>& reaches) : lo_(bounds.lo) {
+    const Vec3d extent = bounds.hi - bounds.lo;
+    for (int k = 0; k < 3; ++k) scale_[k] = extent[k] > 0.0 ? kCells / extent[k] : 0.0;
+    for (const Box& reach : reaches) visit(reach, [&](std::size_t cell) { marked_[cell] = 1; });
+  }
+  bool meets(const Box& box) const {
+    bool any = false;
+    visit(box, [&](std::size_t cell) { any = any || marked_[cell] != 0; });
+    return any;
+  }
+
+ private:
+  static constexpr int kCells = 64;
+
+  int cell(double x, int k) const {
+    return std::clamp(static_cast<int>(std::floor((x - lo_[k]) * scale_[k])), 0, kCells - 1);
+  }
+  template <class Visit>
+  void visit(const Box& box, Visit&& f) const {
+    std::array<int, 3> a{}, b{};
+    for (int k = 0; k < 3; ++k) a[k] = cell(box.lo[k], k), b[k] = cell(box.hi[k], k);
+    for (int x = a[0]; x <= b[0]; ++x)
+      for (int y = a[1]; y <= b[1]; ++y)
+        for (int z = a[2]; z <= b[2]; ++z)
+          f((std::size_t(x) * kCells + std::size_t(y)) * kCells + std::size_t(z));
+  }
+
+  Vec3d lo_;
+  std::array<double, 3> scale_{};
+  std::vector<char> marked_ = std::vector<char>(std::size_t{kCells} * kCells * kCells, 0);
+};
+
+// Per face of `boundary`, whether its box (grown by max_move) may meet the
+// reach of a split of one of `to_split`: only those can meet a face the
+// split makes. All of them when the vertices are many (late rounds of the
+// fix have a few dozen defects on a boundary of 500k faces).
+std::vector<char> faces_within_reach(const TetMesh& mesh, const std::vector<Box>& boxes, const Box& bounds,
+                                     double max_move, const VertexStars& stars,
+                                     std::span<const Index> to_split) {
+  constexpr std::size_t kFacesPerVertex = 64;  // below: the filter costs more than it spares
+  if (to_split.size() * kFacesPerVertex > boxes.size()) return std::vector<char>(boxes.size(), 1);
+  std::vector<Box> reaches;
+  for (Index v : to_split) reaches.push_back(split_reach(mesh, stars.of(v), max_move));
+  const ReachMap map(bounds, reaches);
+  std::vector<char> near(boxes.size(), 0);
+  for (std::size_t f = 0; f < boxes.size(); ++f) near[f] = map.meets(boxes[f]) ? 1 : 0;
+  return near;
+}
+
+}  // namespace
+
+spatial::BoxGrid grid_of_boundary(const TetMesh& mesh, const std::vector<FaceRef>& boundary, double max_move,
+                                  const VertexStars& stars, std::span<const Index> to_split) {
   std::vector<Box> boxes;
   boxes.reserve(boundary.size());
   Box all;
@@ -150,9 +221,10 @@ spatial::BoxGrid grid_of_boundary(const TetMesh& mesh, const std::vector<FaceRef
   }
   if (boxes.empty()) return {};
   const double cell = std::max(2.0 * total_size / double(boxes.size()), 1e-300);
+  const std::vector<char> near = faces_within_reach(mesh, boxes, all, max_move, stars, to_split);
   spatial::BoxGrid grid(all.lo, cell);
   for (std::size_t i = 0; i < boxes.size(); ++i)
-    grid.insert(static_cast<std::uint32_t>(i), boxes[i].lo, boxes[i].hi);
+    if (near[i] != 0) grid.insert(static_cast<std::uint32_t>(i), boxes[i].lo, boxes[i].hi);
   return grid;
 }
 

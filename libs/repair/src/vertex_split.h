@@ -22,8 +22,11 @@ struct SplitContext {
   const spatial::BoxGrid& boundary_grid;
 };
 
-/// The grid SplitContext::boundary_grid asks for.
-spatial::BoxGrid grid_of_boundary(const TetMesh& mesh, const std::vector<FaceRef>& boundary, double max_move);
+/// The grid SplitContext::boundary_grid asks for, for splitting the
+/// vertices `to_split` (their stars in `stars`). Holds only the faces a
+/// split of those could meet, when they are few.
+spatial::BoxGrid grid_of_boundary(const TetMesh& mesh, const std::vector<FaceRef>& boundary, double max_move,
+                                  const VertexStars& stars, std::span<const Index> to_split);
 
 /// Gives every class of the solid's tets in `star` (every tet around v) but
 /// the largest its own
