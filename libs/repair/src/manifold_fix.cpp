@@ -37,8 +37,8 @@ std::vector<Index> defect_vertices(const BoundaryDefects& defects) {
 std::size_t split_round(TetMesh& mesh, std::vector<TetState>& states, const FaceNeighbours& neighbours,
                         const std::vector<FaceRef>& boundary, const BoundaryDefects& defects,
                         double max_move) {
-  const VertexStars stars(mesh.tets, mesh.positions.size());
   const std::vector<Index> to_split = defect_vertices(defects);
+  const VertexStars stars(mesh.tets, mesh.positions.size(), to_split);
   const spatial::BoxGrid grid = grid_of_boundary(mesh, boundary, max_move, stars, to_split);
   const SplitContext context{mesh, neighbours, states, boundary, max_move, grid};
   std::size_t copies = 0;
@@ -79,16 +79,17 @@ std::vector<std::vector<Index>> edit_candidates(const FaceNeighbours& neighbours
 class EditRound {
  public:
   EditRound(const TetMesh& mesh, std::vector<TetState>& states, const FaceNeighbours& neighbours,
-            const envelope::Envelope* envelope, ManifoldFixStats& stats)
+            const BoundaryDefects& defects, const envelope::Envelope* envelope, ManifoldFixStats& stats)
       : mesh_(mesh),
         states_(states),
         neighbours_(neighbours),
         envelope_(envelope),
         stats_(stats),
-        stars_(mesh.tets, mesh.positions.size()),
+        stars_(mesh.tets, mesh.positions.size(), defect_vertices(defects)),
         changed_(mesh.tets.size(), 0),
         solid_tets_(std::count_if(states.begin(), states.end(), in_solid)) {}
 
+  /// Edits at `defects`, the ones it was made for.
   std::size_t run(const BoundaryDefects& defects) {
     std::size_t edits = 0;
     for (const auto& edge : defects.nonmanifold_edges) {
@@ -255,7 +256,8 @@ ManifoldFixStats make_boundary_manifold(TetMesh& mesh, std::span<const std::uint
     if (!stuck) {
       const std::size_t copies = split_round(mesh, states, neighbours, boundary, defects, options.max_move);
       stats.vertex_copies += copies;
-      if (copies == 0) stuck = EditRound(mesh, states, neighbours, envelope, stats).run(defects) == 0;
+      if (copies == 0)
+        stuck = EditRound(mesh, states, neighbours, defects, envelope, stats).run(defects) == 0;
       if (!stuck) {
         kept = std::move(now.neighbours);
         continue;

@@ -31,6 +31,21 @@ VertexStars::VertexStars(const std::vector<Tet>& tets, std::size_t vertices) : o
     for (Index v : tets[t]) tets_[next[v]++] = static_cast<Index>(t);
 }
 
+VertexStars::VertexStars(const std::vector<Tet>& tets, std::size_t vertices, std::span<const Index> wanted)
+    : offsets_(vertices + 1, 0) {
+  std::vector<char> asked(vertices, 0);
+  for (Index v : wanted) asked[v] = 1;
+  for (const Tet& t : tets)
+    for (Index v : t)
+      if (asked[v] != 0) ++offsets_[v + 1];
+  std::partial_sum(offsets_.begin(), offsets_.end(), offsets_.begin());
+  tets_.resize(offsets_.back());
+  std::vector<std::size_t> next(offsets_.begin(), offsets_.end() - 1);
+  for (std::size_t t = 0; t < tets.size(); ++t)
+    for (Index v : tets[t])
+      if (asked[v] != 0) tets_[next[v]++] = static_cast<Index>(t);
+}
+
 FaceNeighbours::FaceNeighbours(const std::vector<Tet>& tets) : across_(4 * tets.size(), kNoTet) {
   struct Entry {
     Triangle key;
