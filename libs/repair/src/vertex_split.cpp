@@ -132,10 +132,6 @@ bool move_into_class(const SplitContext& context, Index w, std::span<const Index
   return false;
 }
 
-}  // namespace
-
-namespace {
-
 // Where the boundary faces of a split of v can reach during a round: its
 // star's corners as they are now, grown by max_move (v's copy and every
 // corner that is itself a copy made this round move at most that far).
@@ -167,8 +163,9 @@ class ReachMap {
  private:
   static constexpr int kCells = 64;
 
+  // Clamped as a double: a star's corners may lie far outside the bounds.
   int cell(double x, int k) const {
-    return std::clamp(static_cast<int>(std::floor((x - lo_[k]) * scale_[k])), 0, kCells - 1);
+    return static_cast<int>(std::clamp(std::floor((x - lo_[k]) * scale_[k]), 0.0, double(kCells - 1)));
   }
   template <class Visit>
   void visit(const Box& box, Visit&& f) const {
