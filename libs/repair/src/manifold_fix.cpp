@@ -85,18 +85,19 @@ class EditRound {
         neighbours_(neighbours),
         envelope_(envelope),
         stats_(stats),
+        defects_(defects),
         stars_(mesh.tets, mesh.positions.size(), defect_vertices(defects)),
         changed_(mesh.tets.size(), 0),
         solid_tets_(std::count_if(states.begin(), states.end(), in_solid)) {}
 
-  /// Edits at `defects`, the ones it was made for.
-  std::size_t run(const BoundaryDefects& defects) {
+  /// Edits at the defects it was made for.
+  std::size_t run() {
     std::size_t edits = 0;
-    for (const auto& edge : defects.nonmanifold_edges) {
+    for (const auto& edge : defects_.nonmanifold_edges) {
       const std::vector<Index> around = tets_around_edge(stars_, edge);
       edits += edit_one_of(edit_candidates(neighbours_, states_, around, false), around);
     }
-    for (Index v : defects.nonmanifold_vertices) {
+    for (Index v : defects_.nonmanifold_vertices) {
       const std::vector<Index> star(stars_.of(v).begin(), stars_.of(v).end());
       edits += edit_one_of(edit_candidates(neighbours_, states_, star, true), star);
     }
@@ -129,6 +130,7 @@ class EditRound {
   const FaceNeighbours& neighbours_;
   const envelope::Envelope* envelope_;
   ManifoldFixStats& stats_;
+  const BoundaryDefects& defects_;
   VertexStars stars_;
   std::vector<std::uint8_t> changed_;
   std::size_t solid_tets_;
@@ -256,8 +258,7 @@ ManifoldFixStats make_boundary_manifold(TetMesh& mesh, std::span<const std::uint
     if (!stuck) {
       const std::size_t copies = split_round(mesh, states, neighbours, boundary, defects, options.max_move);
       stats.vertex_copies += copies;
-      if (copies == 0)
-        stuck = EditRound(mesh, states, neighbours, defects, envelope, stats).run(defects) == 0;
+      if (copies == 0) stuck = EditRound(mesh, states, neighbours, defects, envelope, stats).run() == 0;
       if (!stuck) {
         kept = std::move(now.neighbours);
         continue;

@@ -21,20 +21,18 @@ double tet_volume(const std::vector<Vec3d>& positions, const Tet& tet) {
   return (positions[tet[1]] - a).cross(positions[tet[2]] - a).dot(positions[tet[3]] - a) / 6.0;
 }
 
-VertexStars::VertexStars(const std::vector<Tet>& tets, std::size_t vertices) : offsets_(vertices + 1, 0) {
-  for (const Tet& t : tets)
-    for (Index v : t) ++offsets_[v + 1];
-  std::partial_sum(offsets_.begin(), offsets_.end(), offsets_.begin());
-  tets_.resize(offsets_.back());
-  std::vector<std::size_t> next(offsets_.begin(), offsets_.end() - 1);
-  for (std::size_t t = 0; t < tets.size(); ++t)
-    for (Index v : tets[t]) tets_[next[v]++] = static_cast<Index>(t);
-}
+VertexStars::VertexStars(const std::vector<Tet>& tets, std::size_t vertices)
+    : VertexStars(tets, vertices, std::vector<char>(vertices, 1)) {}
 
 VertexStars::VertexStars(const std::vector<Tet>& tets, std::size_t vertices, std::span<const Index> wanted)
+    : VertexStars(tets, vertices, [&] {
+        std::vector<char> asked(vertices, 0);
+        for (Index v : wanted) asked[v] = 1;
+        return asked;
+      }()) {}
+
+VertexStars::VertexStars(const std::vector<Tet>& tets, std::size_t vertices, const std::vector<char>& asked)
     : offsets_(vertices + 1, 0) {
-  std::vector<char> asked(vertices, 0);
-  for (Index v : wanted) asked[v] = 1;
   for (const Tet& t : tets)
     for (Index v : t)
       if (asked[v] != 0) ++offsets_[v + 1];

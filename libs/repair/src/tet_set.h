@@ -33,6 +33,9 @@ class VertexStars {
   }
 
  private:
+  /// The stars of the vertices flagged in `asked`.
+  VertexStars(const std::vector<Tet>& tets, std::size_t vertices, const std::vector<char>& asked);
+
   std::vector<std::size_t> offsets_;
   std::vector<Index> tets_;
 };

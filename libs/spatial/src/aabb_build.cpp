@@ -108,26 +108,23 @@ std::array<std::array<Vec3d, 3>, 2> bisected(const std::array<Vec3d, 3>& c) {
   return {{{a, middle, apex}, {middle, b, apex}}};
 }
 
-// The number of pieces cut_into_pieces makes of c, or some number above
-// `limit` when that is more.
-std::size_t count_pieces(const std::array<Vec3d, 3>& c, double size, int depth, std::size_t limit) {
-  if (depth == kMaxBisections || longest_edge(c) <= size) return 1;
-  const std::array<std::array<Vec3d, 3>, 2> halves = bisected(c);
-  const std::size_t first = count_pieces(halves[0], size, depth + 1, limit);
-  if (first > limit) return first;
-  return first + count_pieces(halves[1], size, depth + 1, limit - first);
-}
-
 // Calls emit(piece) for every piece of triangle c, cut by longest-edge
 // bisection until the longest edge is at most `size`, or for c itself when
-// it already is.
+// it already is; stops as soon as emit returns false. False if it stopped.
 template <class Emit>
-void cut_into_pieces(const std::array<Vec3d, 3>& c, double size, int depth, Emit&& emit) {
-  if (depth == kMaxBisections || longest_edge(c) <= size) {
-    emit(c);
-    return;
-  }
-  for (const std::array<Vec3d, 3>& half : bisected(c)) cut_into_pieces(half, size, depth + 1, emit);
+bool cut_into_pieces(const std::array<Vec3d, 3>& c, double size, int depth, Emit&& emit) {
+  if (depth == kMaxBisections || longest_edge(c) <= size) return emit(c);
+  for (const std::array<Vec3d, 3>& half : bisected(c))
+    if (!cut_into_pieces(half, size, depth + 1, emit)) return false;
+  return true;
+}
+
+// The number of pieces cut_into_pieces makes of c, or some number above
+// `limit` when that is more.
+std::size_t count_pieces(const std::array<Vec3d, 3>& c, double size, std::size_t limit) {
+  std::size_t pieces = 0;
+  cut_into_pieces(c, size, 0, [&](const std::array<Vec3d, 3>&) { return ++pieces <= limit; });
+  return pieces;
 }
 
 void validate(const TriangleSoup& soup) {
@@ -191,7 +188,7 @@ class AabbBuilder {
       std::size_t total = 0;
       for (std::size_t t = 0; t < counts.size() && (last || total <= budget); ++t) {
         const std::size_t limit = last ? std::numeric_limits<std::size_t>::max() : budget - total;
-        counts[t] = count_pieces(corners(static_cast<std::uint32_t>(t)), size, 0, limit);
+        counts[t] = count_pieces(corners(static_cast<std::uint32_t>(t)), size, limit);
         total += counts[t];
       }
       if (last || total <= budget) return size;
@@ -227,6 +224,7 @@ class AabbBuilder {
         boxes_[slot] = box;
         order_[slot] = {0.5 * (box.lo + box.hi), static_cast<std::uint32_t>(slot), t};
         ++slot;
+        return true;
       });
     });
   }

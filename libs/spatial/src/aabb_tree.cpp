@@ -24,14 +24,12 @@ double box_squared_distance(const AabbTree::Node& node, const Vec3d& p) {
 
 // Squared distance from p to the box of the triangle with corners c[0..2]:
 // a lower bound of its distance to the triangle, for a few operations.
-double triangle_box_squared_distance(const Vec3d* c, const Vec3d& p) {
-  const Vec3d lo = c[0].cwiseMin(c[1]).cwiseMin(c[2]);
-  const Vec3d hi = c[0].cwiseMax(c[1]).cwiseMax(c[2]);
-  return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).squaredNorm();
-}
-
 double box_squared_distance(const AabbBox& box, const Vec3d& p) {
   return (box.lo - p).cwiseMax(p - box.hi).cwiseMax(0.0).squaredNorm();
+}
+
+double triangle_box_squared_distance(const Vec3d* c, const Vec3d& p) {
+  return box_squared_distance({c[0].cwiseMin(c[1]).cwiseMin(c[2]), c[0].cwiseMax(c[1]).cwiseMax(c[2])}, p);
 }
 
 // Drops the repeats (pieces of one triangle) from out[from, end), sorted.
