@@ -8,6 +8,10 @@ namespace mr::spatial {
 namespace {
 
 constexpr std::int64_t kCellRange = std::int64_t(1) << 21;
+// A part of a cell is split once it holds more entries than this, down to
+// parts 2^kMaxDepth times smaller than the cell.
+constexpr std::size_t kSplitAbove = 96;
+constexpr int kMaxDepth = 12;
 
 // The float at or below x (above, for `up`): a float box rounded outward
 // holds the double box.
@@ -24,13 +28,32 @@ float rounded(double x, bool up) {
 
 BoxGrid::BoxGrid(const Vec3d& origin, double cell_size) : origin_(origin), cell_size_(cell_size) {}
 
+Vec3d BoxGrid::grid_coordinates(const Vec3d& p) const {
+  return Vec3d((p[0] - origin_[0]) / cell_size_, (p[1] - origin_[1]) / cell_size_,
+               (p[2] - origin_[2]) / cell_size_);
+}
+
 BoxGrid::Cell BoxGrid::cell_of(const Vec3d& p) const {
+  const Vec3d x = grid_coordinates(p);
   Cell c{};
-  for (int k = 0; k < 3; ++k) {
-    const double x = std::floor((p[k] - origin_[k]) / cell_size_);
-    c[k] = static_cast<std::int64_t>(std::clamp(x, 0.0, double(kCellRange - 1)));
-  }
+  for (int k = 0; k < 3; ++k)
+    c[k] = static_cast<std::int64_t>(std::clamp(std::floor(x[k]), 0.0, double(kCellRange - 1)));
   return c;
+}
+
+// Scaling by 2^depth is exact, so a point in cell c has its index at depth
+// d in [c 2^d, (c + 1) 2^d); clamping to that range keeps the order of
+// points, which is all the loose octree needs: a point in a box and in a
+// query box has its index in both spans.
+BoxGrid::Span BoxGrid::span_at(const Vec3d& lo, const Vec3d& hi, const Cell& cell, int depth) {
+  const double scale = std::ldexp(1.0, depth);
+  Span span;
+  for (int k = 0; k < 3; ++k) {
+    const double first = double(cell[k]) * scale, last = first + scale - 1.0;
+    span.lo[k] = static_cast<std::int64_t>(std::clamp(std::floor(lo[k] * scale), first, last));
+    span.hi[k] = static_cast<std::int64_t>(std::clamp(std::floor(hi[k] * scale), first, last));
+  }
+  return span;
 }
 
 std::uint64_t BoxGrid::key(std::int64_t x, std::int64_t y, std::int64_t z) {
@@ -84,8 +107,71 @@ void BoxGrid::add_entries(std::uint32_t face, const Box& box) {
   const Cell b = cell_of(box.hi);
   for (std::int64_t x = a[0]; x <= b[0]; ++x)
     for (std::int64_t y = a[1]; y <= b[1]; ++y)
-      for (std::int64_t z = a[2]; z <= b[2]; ++z) cells_[key(x, y, z)].push_back(entry);
+      for (std::int64_t z = a[2]; z <= b[2]; ++z) {
+        Node& node = cells_[key(x, y, z)];
+        add_to_node(node, {x, y, z}, entry_coordinates(entry), entry, {x, y, z}, 0);
+      }
   entries_ += box.cells;
+}
+
+namespace {
+
+// The part of depth + 1 an entry spanning `span` at that depth belongs
+// to, as a half (0 to 7) of `part` (at depth), or -1 when it stays.
+int half_for(const std::array<std::int64_t, 3>& lo, const std::array<std::int64_t, 3>& hi,
+             const std::array<std::int64_t, 3>& part) {
+  int half = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (hi[k] - lo[k] > 2) return -1;
+    const std::int64_t middle = lo[k] + (hi[k] - lo[k]) / 2;
+    const std::int64_t offset = middle - 2 * part[k];
+    if (offset != 0 && offset != 1) return -1;
+    half |= int(offset) << k;
+  }
+  return half;
+}
+
+std::array<std::int64_t, 3> half_index(const std::array<std::int64_t, 3>& part, int half) {
+  return {2 * part[0] + (half & 1), 2 * part[1] + ((half >> 1) & 1), 2 * part[2] + ((half >> 2) & 1)};
+}
+
+}  // namespace
+
+std::pair<Vec3d, Vec3d> BoxGrid::entry_coordinates(const Entry& entry) const {
+  return {grid_coordinates(Vec3d(entry.lo[0], entry.lo[1], entry.lo[2])),
+          grid_coordinates(Vec3d(entry.hi[0], entry.hi[1], entry.hi[2]))};
+}
+
+void BoxGrid::add_to_node(Node& node, const Cell& cell, const std::pair<Vec3d, Vec3d>& at, const Entry& entry,
+                          std::array<std::int64_t, 3> part, int depth) {
+  Node* target = &node;
+  while (target->halves) {
+    const Span span = span_at(at.first, at.second, cell, depth + 1);
+    const int half = half_for(span.lo, span.hi, part);
+    if (half < 0) break;
+    target = &(*target->halves)[half];
+    part = half_index(part, half);
+    ++depth;
+  }
+  target->entries.push_back(entry);
+  if (target->entries.size() > kSplitAbove && depth < kMaxDepth && !target->halves)
+    split(*target, cell, part, depth);
+}
+
+void BoxGrid::split(Node& node, const Cell& cell, const std::array<std::int64_t, 3>& part, int depth) {
+  node.halves = std::make_unique<std::array<Node, 8>>();
+  std::vector<Entry> staying;
+  for (const Entry& entry : node.entries) {
+    const auto at = entry_coordinates(entry);
+    const Span span = span_at(at.first, at.second, cell, depth + 1);
+    const int half = half_for(span.lo, span.hi, part);
+    if (half < 0) {
+      staying.push_back(entry);
+    } else {
+      add_to_node((*node.halves)[half], cell, at, entry, half_index(part, half), depth + 1);
+    }
+  }
+  node.entries = std::move(staying);
 }
 
 void BoxGrid::rebuild() {
@@ -142,15 +228,44 @@ void BoxGrid::append_overlapping(const std::vector<Entry>& entries, const Cell& 
   }
 }
 
+void BoxGrid::append_from_cell(const Node& node, const Cell& cell, const Cell& query_first, const Vec3d& lo,
+                               const Vec3d& hi, std::vector<std::uint32_t>& out) const {
+  if (!node.halves) {
+    append_overlapping(node.entries, cell, query_first, lo, hi, out);
+    return;
+  }
+  visit(node, cell, query_first, lo, hi, {grid_coordinates(lo), grid_coordinates(hi)}, cell, 0, out);
+}
+
+// A half may hold an entry that meets the query only if their spans at the
+// half's depth come within one index of it: the entry's span lies within
+// one index of the half, and a common point has its index in both.
+void BoxGrid::visit(const Node& node, const Cell& cell, const Cell& query_first, const Vec3d& lo,
+                    const Vec3d& hi, const std::pair<Vec3d, Vec3d>& query_at,
+                    const std::array<std::int64_t, 3>& part, int depth,
+                    std::vector<std::uint32_t>& out) const {
+  append_overlapping(node.entries, cell, query_first, lo, hi, out);
+  if (!node.halves) return;
+  const Span span = span_at(query_at.first, query_at.second, cell, depth + 1);
+  for (int half = 0; half < 8; ++half) {
+    const Node& child = (*node.halves)[half];
+    if (child.entries.empty() && !child.halves) continue;
+    const auto index = half_index(part, half);
+    bool near = true;
+    for (int k = 0; k < 3; ++k) near = near && span.lo[k] <= index[k] + 1 && span.hi[k] >= index[k] - 1;
+    if (near) visit(child, cell, query_first, lo, hi, query_at, index, depth + 1, out);
+  }
+}
+
 // For query boxes larger than the occupied part of the grid.
 void BoxGrid::collect_from_all_cells(const Cell& a, const Cell& b, const Vec3d& lo, const Vec3d& hi,
                                      std::vector<std::uint32_t>& out) const {
   const std::uint64_t mask = kCellRange - 1;
-  for (const auto& [cell, entries] : cells_) {
+  for (const auto& [cell, node] : cells_) {
     const Cell c{std::int64_t(cell >> 42), std::int64_t((cell >> 21) & mask), std::int64_t(cell & mask)};
     bool inside = true;
     for (int k = 0; k < 3; ++k) inside = inside && c[k] >= a[k] && c[k] <= b[k];
-    if (inside) append_overlapping(entries, c, a, lo, hi, out);
+    if (inside) append_from_cell(node, c, a, lo, hi, out);
   }
 }
 
@@ -178,7 +293,7 @@ void BoxGrid::query_unordered(const Vec3d& lo, const Vec3d& hi, std::vector<std:
       for (std::int64_t y = a[1]; y <= b[1]; ++y)
         for (std::int64_t z = a[2]; z <= b[2]; ++z) {
           const auto it = cells_.find(key(x, y, z));
-          if (it != cells_.end()) append_overlapping(it->second, {x, y, z}, a, lo, hi, out);
+          if (it != cells_.end()) append_from_cell(it->second, {x, y, z}, a, lo, hi, out);
         }
   }
 }
