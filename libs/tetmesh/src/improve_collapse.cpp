@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace mr::tetmesh::improve_detail {
 namespace {
@@ -258,57 +259,86 @@ double energy_raise(const Workspace& ws, std::span<const Index> star_u, std::spa
   return new_max / std::max(old_max, ws.stop_energy);
 }
 
-}  // namespace
-
-bool try_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal) {
-  Mesh& mesh = ws.mesh;
-  if (u == v || !mesh.vertex_alive(u) || !mesh.vertex_alive(v)) return false;
-  if ((mesh.flags(u) & (kLocked | kOnBoundary | kOnBox)) != 0) return false;
-  const std::vector<Index> star_u = ws.star(u);
+// The checks of a collapse of u onto v, on the mesh as it is: `star_u` is
+// u's star, `star_of` gives another vertex's (asked only past the cheap
+// checks). Changes nothing.
+template <class StarOf>
+std::optional<CollapsePlan> check_collapse(const Workspace& ws, Index u, Index v, std::vector<Index> star_u,
+                                           StarOf&& star_of, CollapseGoal goal) {
+  const Mesh& mesh = ws.mesh;
+  if (u == v || !mesh.vertex_alive(u) || !mesh.vertex_alive(v)) return std::nullopt;
+  if ((mesh.flags(u) & (kLocked | kOnBoundary | kOnBox)) != 0) return std::nullopt;
   std::vector<Index> uv_tets;
   for (const Index t : star_u) {
     if (mesh.corner_of(t, v) >= 0) uv_tets.push_back(t);
   }
-  if (uv_tets.empty() || vertex_on_hull(mesh, star_u, u)) return false;
+  if (uv_tets.empty() || vertex_on_hull(mesh, star_u, u)) return std::nullopt;
 
-  std::vector<Tet> new_tets;
-  std::vector<std::size_t> origin;  // the tet of star_u each new tet was
+  CollapsePlan plan{u, v, {}, {}, {}};
   for (std::size_t i = 0; i < star_u.size(); ++i) {
     if (mesh.corner_of(star_u[i], v) >= 0) continue;
     Tet moved = mesh.tet(star_u[i]);
     std::replace(moved.begin(), moved.end(), u, v);
-    new_tets.push_back(moved);
-    origin.push_back(i);
+    plan.new_tets.push_back(moved);
+    plan.origin.push_back(i);
   }
   // Rounding only needs the exact test below: a new tet flat on the doubles
   // of its rational corners (a knot of cut points) becomes positive or is
   // checked again when they are rounded. Requiring finite energy here
   // refused nearly every collapse that would free a knot.
-  const double raise = goal == CollapseGoal::quality ? energy_raise(ws, star_u, new_tets, origin) : 0.0;
-  if (raise > kPinchSlack) return false;
+  const double raise =
+      goal == CollapseGoal::quality ? energy_raise(ws, star_u, plan.new_tets, plan.origin) : 0.0;
+  if (raise > kPinchSlack) return std::nullopt;
 
-  const std::vector<Index> star_v = ws.star(v);
+  const std::vector<Index> star_v = star_of(v);
   const Link lu = vertex_link(mesh, star_u, u);
   const Link lv = vertex_link(mesh, star_v, v);
-  if (!tet_link_condition(lu, lv, edge_link(mesh, uv_tets, u, v))) return false;
-  if (!all_positive(mesh, new_tets)) return false;
+  if (!tet_link_condition(lu, lv, edge_link(mesh, uv_tets, u, v))) return std::nullopt;
+  if (!all_positive(mesh, plan.new_tets)) return std::nullopt;
 
   const bool carried = goal == CollapseGoal::quality && !ws.payload.value.empty();
   const SurfaceAt at_u = surface_at(ws, carried, star_u, u);
   const bool pinch = at_u.free_sheet() && faces_on_edge(at_u.tracked, u, v) == 0;
-  if (raise > 1.0 && !pinch) return false;
-  if (!surface_keeps(ws, carried, at_u, star_v, u, v)) return false;
+  if (raise > 1.0 && !pinch) return std::nullopt;
+  if (!surface_keeps(ws, carried, at_u, star_v, u, v)) return std::nullopt;
+  plan.star_u = std::move(star_u);
+  return plan;
+}
 
-  const auto parents = [u, v](const FaceKey& face, std::vector<FaceKey>& out) {
+}  // namespace
+
+void apply_collapse(Workspace& ws, const CollapsePlan& plan) {
+  const auto parents = [u = plan.u, v = plan.v](const FaceKey& face, std::vector<FaceKey>& out) {
     out.push_back(face);
     if (!contains(face, v)) return;
     FaceKey before = face;
     std::replace(before.begin(), before.end(), v, u);
     out.push_back(face_key(before));
   };
-  replace_tets(ws, star_u, new_tets, parents, origin);
-  mesh.remove_vertex(u);
-  return true;
+  replace_tets(ws, plan.star_u, plan.new_tets, parents, plan.origin);
+  ws.mesh.remove_vertex(plan.u);
+}
+
+std::optional<CollapsePlan> plan_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal) {
+  if (u == v || !ws.mesh.vertex_alive(u) || !ws.mesh.vertex_alive(v)) return std::nullopt;
+  return check_collapse(
+      ws, u, v, ws.star(u), [&ws](Index x) { return ws.star(x); }, goal);
+}
+
+bool try_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal) {
+  const std::optional<CollapsePlan> plan = plan_collapse(ws, u, v, goal);
+  if (plan) apply_collapse(ws, *plan);
+  return plan.has_value();
+}
+
+EdgeCollapse decide_edge_collapse(const Workspace& ws, Index a, Index b) {
+  const std::optional<std::vector<Index>> star_a = ws.seeded_star(a), star_b = ws.seeded_star(b);
+  if (!star_a || !star_b) return {EdgeCollapse::Kind::undecided, {}};
+  const auto star_of = [&](Index x) { return x == a ? *star_a : *star_b; };
+  std::optional<CollapsePlan> plan = check_collapse(ws, a, b, *star_a, star_of, CollapseGoal::quality);
+  if (!plan) plan = check_collapse(ws, b, a, *star_b, star_of, CollapseGoal::quality);
+  if (!plan) return {EdgeCollapse::Kind::refused, {}};
+  return {EdgeCollapse::Kind::planned, std::move(*plan)};
 }
 
 }  // namespace mr::tetmesh::improve_detail

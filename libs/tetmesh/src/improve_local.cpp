@@ -62,6 +62,14 @@ std::vector<Index> Workspace::star(Index v) {
   return tets_around_vertex(mesh, v, seed);
 }
 
+std::optional<std::vector<Index>> Workspace::seeded_star(Index v) const {
+  if (!mesh.vertex_alive(v)) return std::vector<Index>{};
+  if (v >= seed_.size()) return std::nullopt;
+  const Index t = seed_[v];
+  if (t == kNoTet || !mesh.tet_alive(t) || mesh.corner_of(t, v) < 0) return std::nullopt;
+  return tets_around_vertex(mesh, v, t);
+}
+
 std::vector<Index> Workspace::edge_tets(Index a, Index b, Index hint) {
   const auto has_edge = [&](Index t) {
     return t != kNoTet && mesh.tet_alive(t) && mesh.corner_of(t, a) >= 0 && mesh.corner_of(t, b) >= 0;

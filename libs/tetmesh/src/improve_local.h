@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -67,6 +68,9 @@ class Workspace {
 
   /// The live tets around v, sorted. Empty for a vertex no tet uses.
   std::vector<Index> star(Index v);
+  /// The same without refreshing a stale seed (safe beside other readers):
+  /// nullopt when v's seed no longer holds it.
+  std::optional<std::vector<Index>> seeded_star(Index v) const;
   /// The tets containing edge (a, b), sorted; empty if it is not an edge.
   /// `hint`, when it is a live tet with both corners, saves the walk around
   /// a's star to find one (long on the cut points where many triangles cross).
@@ -152,6 +156,25 @@ Index try_split(Workspace& ws, Index a, Index b, const HybridPoint& at, bool che
 enum class CollapseGoal { quality, rounding };
 /// Collapses u onto v if every check passes.
 bool try_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal);
+/// A collapse of u onto v that passed every check: u's star and the tets
+/// that replace it (new_tets[i] is star_u[origin[i]] with u moved to v).
+struct CollapsePlan {
+  Index u = kNoVertex, v = kNoVertex;
+  std::vector<Index> star_u;
+  std::vector<Tet> new_tets;
+  std::vector<std::size_t> origin;
+};
+/// The checks of try_collapse, changing nothing but the star seeds.
+std::optional<CollapsePlan> plan_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal);
+void apply_collapse(Workspace& ws, const CollapsePlan& plan);
+/// The collapse pass's decision on edge (a, b), a onto b else b onto a,
+/// taken without changing anything (several threads may decide at once);
+/// undecided when a seed is stale, so a star cannot be found read-only.
+struct EdgeCollapse {
+  enum class Kind { refused, planned, undecided } kind;
+  CollapsePlan plan;
+};
+EdgeCollapse decide_edge_collapse(const Workspace& ws, Index a, Index b);
 
 /// Edge removal of edge (a, b) of tet `hint`: the n tets around it (3 to 7)
 /// become 2n - 4; returns n, or 0 when nothing lowers the largest energy.
