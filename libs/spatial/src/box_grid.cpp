@@ -105,12 +105,11 @@ void BoxGrid::add_entries(std::uint32_t face, const Box& box) {
   }
   const Cell& a = box.first;
   const Cell b = cell_of(box.hi);
+  const std::pair<Vec3d, Vec3d> at = entry_coordinates(entry);
   for (std::int64_t x = a[0]; x <= b[0]; ++x)
     for (std::int64_t y = a[1]; y <= b[1]; ++y)
-      for (std::int64_t z = a[2]; z <= b[2]; ++z) {
-        Node& node = cells_[key(x, y, z)];
-        add_to_node(node, {x, y, z}, entry_coordinates(entry), entry, {x, y, z}, 0);
-      }
+      for (std::int64_t z = a[2]; z <= b[2]; ++z)
+        add_to_node(cells_[key(x, y, z)], {x, y, z}, at, entry, {x, y, z}, 0);
   entries_ += box.cells;
 }
 
@@ -118,8 +117,9 @@ namespace {
 
 // The part of depth + 1 an entry spanning `span` at that depth belongs
 // to, as a half (0 to 7) of `part` (at depth), or -1 when it stays.
-int half_for(const std::array<std::int64_t, 3>& lo, const std::array<std::int64_t, 3>& hi,
-             const std::array<std::int64_t, 3>& part) {
+using Index3 = std::array<std::int64_t, 3>;  // BoxGrid's Cell
+
+int half_for(const Index3& lo, const Index3& hi, const Index3& part) {
   int half = 0;
   for (int k = 0; k < 3; ++k) {
     if (hi[k] - lo[k] > 2) return -1;
@@ -131,7 +131,7 @@ int half_for(const std::array<std::int64_t, 3>& lo, const std::array<std::int64_
   return half;
 }
 
-std::array<std::int64_t, 3> half_index(const std::array<std::int64_t, 3>& part, int half) {
+Index3 half_index(const Index3& part, int half) {
   return {2 * part[0] + (half & 1), 2 * part[1] + ((half >> 1) & 1), 2 * part[2] + ((half >> 2) & 1)};
 }
 
@@ -143,7 +143,7 @@ std::pair<Vec3d, Vec3d> BoxGrid::entry_coordinates(const Entry& entry) const {
 }
 
 void BoxGrid::add_to_node(Node& node, const Cell& cell, const std::pair<Vec3d, Vec3d>& at, const Entry& entry,
-                          std::array<std::int64_t, 3> part, int depth) {
+                          Cell part, int depth) {
   Node* target = &node;
   while (target->halves) {
     const Span span = span_at(at.first, at.second, cell, depth + 1);
@@ -158,7 +158,7 @@ void BoxGrid::add_to_node(Node& node, const Cell& cell, const std::pair<Vec3d, V
     split(*target, cell, part, depth);
 }
 
-void BoxGrid::split(Node& node, const Cell& cell, const std::array<std::int64_t, 3>& part, int depth) {
+void BoxGrid::split(Node& node, const Cell& cell, const Cell& part, int depth) {
   node.halves = std::make_unique<std::array<Node, 8>>();
   std::vector<Entry> staying;
   for (const Entry& entry : node.entries) {
@@ -241,8 +241,7 @@ void BoxGrid::append_from_cell(const Node& node, const Cell& cell, const Cell& q
 // half's depth come within one index of it: the entry's span lies within
 // one index of the half, and a common point has its index in both.
 void BoxGrid::visit(const Node& node, const Cell& cell, const Cell& query_first, const Vec3d& lo,
-                    const Vec3d& hi, const std::pair<Vec3d, Vec3d>& query_at,
-                    const std::array<std::int64_t, 3>& part, int depth,
+                    const Vec3d& hi, const std::pair<Vec3d, Vec3d>& query_at, const Cell& part, int depth,
                     std::vector<std::uint32_t>& out) const {
   append_overlapping(node.entries, cell, query_first, lo, hi, out);
   if (!node.halves) return;

@@ -320,7 +320,6 @@ void apply_collapse(Workspace& ws, const CollapsePlan& plan) {
 }
 
 std::optional<CollapsePlan> plan_collapse(Workspace& ws, Index u, Index v, CollapseGoal goal) {
-  if (u == v || !ws.mesh.vertex_alive(u) || !ws.mesh.vertex_alive(v)) return std::nullopt;
   return check_collapse(
       ws, u, v, ws.star(u), [&ws](Index x) { return ws.star(x); }, goal);
 }

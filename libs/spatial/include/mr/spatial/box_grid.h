@@ -83,10 +83,10 @@ class BoxGrid {
   /// The indices at `depth` of grid coordinates lo and hi, within `cell`.
   static Span span_at(const Vec3d& lo, const Vec3d& hi, const Cell& cell, int depth);
   void add_to_node(Node& node, const Cell& cell, const std::pair<Vec3d, Vec3d>& at, const Entry& entry,
-                   std::array<std::int64_t, 3> part, int depth);
-  void split(Node& node, const Cell& cell, const std::array<std::int64_t, 3>& part, int depth);
+                   Cell part, int depth);
+  void split(Node& node, const Cell& cell, const Cell& part, int depth);
   void visit(const Node& node, const Cell& cell, const Cell& query_first, const Vec3d& lo, const Vec3d& hi,
-             const std::pair<Vec3d, Vec3d>& query_at, const std::array<std::int64_t, 3>& part, int depth,
+             const std::pair<Vec3d, Vec3d>& query_at, const Cell& part, int depth,
              std::vector<std::uint32_t>& out) const;
   void rebuild();
   Cell cell_of(const Vec3d& p) const;
