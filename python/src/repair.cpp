@@ -43,9 +43,7 @@ TriangleSoup rebuild_through_tets(const TriangleSoup& input, const RepairArgs& a
 
 TriangleSoup repair_soup(const TriangleSoup& input, const RepairArgs& args) {
   if (!args.remesh) {
-    const bool keep =
-        tools::rebuild_mode(input.triangles.size(), std::nullopt) == tools::RebuildMode::keep_input;
-    tools::HolesOnlyRepair holes = tools::repair_holes_only(input, args.grid, keep);
+    tools::HolesOnlyRepair holes = tools::repair_holes_only(input, args.grid, /*accept_closed=*/true);
     if (holes.fill) return std::move(holes.fill->surface);
   }
   return rebuild_through_tets(input, args);
@@ -56,11 +54,11 @@ constexpr const char* kDoc = R"(Turn any triangle surface into a watertight one.
 The meshrepair tool on arrays. The output is closed, edge- and vertex-manifold,
 oriented outward, free of self-intersections and zero-area faces, and within
 epsilon of the input wherever the input had surface (holes and gaps are
-filled). An input whose only defects are holes keeps every face and gets
-faired patches (unless remesh=True); any other input goes through the
-tetrahedral fast path, which keeps the input triangles away from defects on
-inputs of up to 50,000 faces (a watertight one comes back as it is) and
-rebuilds larger ones, or every input with remesh=True.
+filled). A watertight input comes back as it is, and one whose only defects
+are holes keeps every face and gets faired patches, at any size (unless
+remesh=True); any other input goes through the tetrahedral fast path, which
+keeps the input triangles away from defects on inputs of up to 50,000 faces
+and rebuilds larger ones, or every input with remesh=True.
 
 Args:
     vertices: (N, 3) array of real numbers (any float or integer dtype).

@@ -55,8 +55,9 @@ cli::ToolSpec make_spec(ToolOptions& o) {
       "splitting vertices apart inside the solid (never leaving coincident vertices), peeled, and\n"
       "cleaned up by collapses and flips inside the envelope of the original input. Input triangles\n"
       "away from defects come out as they went in (their corners bit for bit) on inputs of up to 50,000\n"
-      "faces, larger ones are rebuilt and simplified (--keep-input, --remesh choose). An input whose only\n"
-      "defects are holes keeps every face: its holes are closed by faired patches (hole-fill).";
+      "faces, larger ones are rebuilt and simplified (--keep-input, --remesh choose). A watertight input\n"
+      "comes out as it is, and one whose only defects are holes keeps every face, at any size: its holes\n"
+      "are closed by faired patches (hole-fill).";
   auto& t = o.tetrahedralize;
   spec.options = {
       {"--epsilon", "-e", "EPS", "envelope radius relative to the bbox diagonal (default 1e-3)",
@@ -77,8 +78,8 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        [&](const std::string&) { t.skip_simplify = true; }},
       {"--remesh", "", "",
        "rebuild the whole surface and simplify it inside the envelope (by default input triangles away "
-       "from defects are kept as they are on inputs of up to 50,000 faces, and an input whose only defects "
-       "are holes keeps every face)",
+       "from defects are kept as they are on inputs of up to 50,000 faces, and a watertight input, or one "
+       "whose only defects are holes, keeps every face)",
        [&](const std::string&) { o.rebuild = RebuildMode::remesh; }},
       {"--keep-input", "", "",
        "keep the input triangles away from defects at any size (by default only up to 50,000 faces: above, "
@@ -216,7 +217,6 @@ void check_output_precision(const io::Registry& registry, const std::string& out
 bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
                     const std::vector<std::string>& files, const TriangleSoup& input, double seconds_read,
                     std::string& declined, std::ostream& out) {
-  const RebuildMode mode = rebuild_mode(input.triangles.size(), options.rebuild);
   if (options.rebuild == RebuildMode::remesh) {
     declined = "--remesh";
     return false;
@@ -227,7 +227,9 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
   const double epsilon = epsilon_for(input, options.tetrahedralize);
   const CoordinateGrid grid =
       output_grid(registry, files[1], epsilon, options, write_options)(box.min(), box.max());
-  const HolesOnlyRepair holes = repair_holes_only(input, grid, mode == RebuildMode::keep_input);
+  // A watertight input passes as it is at any size: checking it costs
+  // seconds where rebuilding a large one costs more and changes every face.
+  const HolesOnlyRepair holes = repair_holes_only(input, grid, /*accept_closed=*/true);
   declined = holes.declined;
   if (!holes.fill) return false;
   const double seconds_fill = seconds_since(start);

@@ -160,6 +160,7 @@ InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input, std::span
   stats.new_vertices = c.new_vertices;
   stats.steiner_points = c.steiner_points;
   stats.eagerly_rounded = c.eagerly_rounded;
+  stats.already_faces = c.already_faces;
   stats.vertex_creator = inserter.creators();
   stats.vertex_creator.resize(mesh.vertex_slots(), InsertionStats::kNoCreator);
   for (Index v = 0; v < mesh.vertex_slots(); ++v) {

@@ -169,6 +169,7 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
     timer.count("cut_points", inserted.new_vertices);
     timer.count("steiner_points", inserted.steiner_points);
     timer.count("eagerly_rounded", inserted.eagerly_rounded);
+    timer.count("already_faces", inserted.already_faces);
     timer.count("tets", mesh.num_tets());
     embedding.creator = std::move(inserted.vertex_creator);
     embedding.marked_as = std::move(inserted.marked_as);

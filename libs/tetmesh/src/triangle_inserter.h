@@ -44,6 +44,7 @@ struct InsertionCounters {
   std::size_t new_vertices = 0;     ///< cut points (Steiner points excluded)
   std::size_t steiner_points = 0;   ///< cell centres, where no corner could cone a cell
   std::size_t eagerly_rounded = 0;  ///< cut points rounded during insertion (too many bits)
+  std::size_t already_faces = 0;    ///< triangles that were a mesh face already: marked, nothing cut
 };
 
 class TriangleInserter {
@@ -81,6 +82,7 @@ class TriangleInserter {
   };
 
   bool set_up_plane(std::span<const Index> corners, std::uint32_t id);
+  bool mark_if_mesh_face();
   std::size_t line_count() const { return corners_.size(); }
   int plane_sign(Index v);
   int line_side(int line, Index v);
@@ -134,8 +136,8 @@ class TriangleInserter {
   int orientation_ = 1;                 ///< sign making T's interior positive for line_side
   std::unordered_map<Index, int> plane_sign_;
   std::unordered_map<Index, std::array<std::int8_t, kMaxCorners>> line_side_;
-  std::vector<std::uint32_t> candidate_stamp_, cut_stamp_, cavity_stamp_;
-  std::vector<Index> candidates_, cut_tets_, cavity_;
+  std::vector<std::uint32_t> candidate_stamp_, cut_stamp_, cavity_stamp_, star_stamp_;
+  std::vector<Index> candidates_, cut_tets_, cavity_, star_;
   std::unordered_map<std::uint64_t, HybridPoint> plane_points_;  ///< P on edge (sorted pair), computed once
   std::unordered_map<std::uint64_t, Index> splits_;              ///< segment (sorted pair) -> its new point
   std::vector<std::array<Index, 3>> split_mesh_edges_;           ///< u, v, a tet around the edge

@@ -6,6 +6,7 @@
 // coplanar neighbours were inserted as one polygon, the faces marked with
 // the polygon's id add up to the area of all its triangles.
 
+#include "mesh_generators.h"
 #include "test_support.h"
 
 #include <mr/kernel/predicates.h>
@@ -137,6 +138,19 @@ TEST_CASE("insertion: a cube's faces become mesh faces", "[tetmesh][insertion]")
     CHECK(inserted.stats.merged == 6);
     require_exactly_embedded(cube, inserted);
   }
+}
+
+TEST_CASE("insertion: triangles that are mesh faces already are marked without a cut",
+          "[tetmesh][insertion]") {
+  // The background is the Delaunay mesh of the sphere's vertices, and a
+  // fine sphere's triangles are nearly all Delaunay faces.
+  const TriangleSoup sphere = test::sphere(1.0, 3);
+  const Inserted inserted = insert_soup(sphere);
+  CAPTURE(inserted.stats.already_faces, inserted.stats.new_vertices);
+  CHECK(inserted.stats.inserted == sphere.triangles.size());
+  CHECK(inserted.stats.already_faces > sphere.triangles.size() / 2);
+  CHECK(inserted.stats.already_faces <= inserted.stats.inserted);
+  require_exactly_embedded(sphere, inserted);
 }
 
 TEST_CASE("insertion: two overlapping cubes cut each other", "[tetmesh][insertion]") {

@@ -28,6 +28,7 @@ struct InsertionStats {
   std::size_t new_vertices = 0;
   std::size_t steiner_points = 0;
   std::size_t eagerly_rounded = 0;    ///< cut points too long to keep exact, rounded at once
+  std::size_t already_faces = 0;      ///< of `inserted`, triangles that were mesh faces: marked, not cut
   std::size_t skipped = 0;            ///< left out on request (see `skip`)
   std::size_t rational_vertices = 0;  ///< still rational when insertion ended
   /// Per vertex slot, the id of the triangle whose insertion created the
