@@ -399,9 +399,12 @@ TEST_CASE("faces meeting others improperly are found exactly", "[spatial][keep]"
   soup.positions = {{0, 0, 0},      {2, 0, 0},     {0, 2, 0},      // a
                     {0.5, 0.5, -1}, {0.5, 0.5, 1}, {1.5, 0.2, 0},  // b crosses a
                     {2, 0, 0},      {0, 2, 0},     {2, 2, 0},      // c shares a's edge
-                    {5, 5, 5},      {6, 5, 5},     {5, 6, 5}};     // d far away
-  soup.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 8, 7}, {9, 10, 11}};
-  REQUIRE(spatial::faces_meeting_others(soup) == std::vector<std::uint8_t>{1, 1, 0, 0});
+                    {5, 5, 5},      {6, 5, 5},     {5, 6, 5},      // d far away
+                    {0, 0, 0},      {1, 0.5, -1},  {0.5, 1, 1},    // e shares a's corner, crosses a
+                    {2, 0, 0},      {3, 0, 1},     {3, 1, 1}};     // f shares a corner of a and c only
+  soup.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 8, 7}, {9, 10, 11}, {12, 13, 14}, {15, 16, 17}};
+  REQUIRE(spatial::faces_meeting_others(soup) == std::vector<std::uint8_t>{1, 1, 0, 0, 1, 0});
+  soup.triangles.resize(4);
   // Only asked faces are tested; skipped ones are not tested against.
   REQUIRE(spatial::faces_meeting_others(soup, std::vector<std::uint8_t>{0, 1, 1, 1}) ==
           std::vector<std::uint8_t>{0, 1, 0, 0});

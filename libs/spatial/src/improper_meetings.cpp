@@ -9,6 +9,27 @@
 #include <array>
 
 namespace mr::spatial {
+namespace {
+
+// Whether q's corners that are not corners of p (equal positions) are
+// certainly all strictly on one side of p's plane. Then q meets that plane
+// only in the corners it shares with p, so the two meet, if at all, only in
+// what they share. Faces around a vertex or an edge pass without the exact
+// test, which their shared corners (orientation exactly 0) would send to
+// exact arithmetic.
+bool certainly_apart_but_shared(const PlaneSideFilter& plane, const std::array<Vec3d, 3>& p,
+                                const std::array<Vec3d, 3>& q) {
+  int side = 0;
+  for (const Vec3d& x : q) {
+    if (x == p[0] || x == p[1] || x == p[2]) continue;
+    const int s = plane.certain_sign(x);
+    if (s == 0 || (side != 0 && s != side)) return false;
+    side = s;
+  }
+  return side != 0;
+}
+
+}  // namespace
 
 // Candidates from the AABB tree's box query, which follows the faces' sizes. A uniform grid with
 // cells twice the mean edge kept the long slivers of CAD models in a list that every query went
@@ -27,7 +48,7 @@ std::vector<std::uint8_t> faces_meeting_others(const TriangleSoup& soup, std::sp
     for (std::uint32_t g : near) {
       if (g == f || skipped(g)) continue;
       const std::array<Vec3d, 3> q = soup.corners(g);
-      if (plane.certainly_one_side(q[0], q[1], q[2])) continue;  // most candidates of long slivers
+      if (certainly_apart_but_shared(plane, p, q)) continue;  // most candidates of long slivers and fans
       if (intersect_triangles(p[0], p[1], p[2], q[0], q[1], q[2]).improper()) {
         meets[f] = 1;
         return;
