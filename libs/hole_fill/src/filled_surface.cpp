@@ -48,8 +48,12 @@ std::size_t FilledSurface::PositionHash::operator()(const Vec3d& p) const {
 
 FilledSurface::FilledSurface(TriangleSoup welded) : soup_(std::move(welded)) {
   cell_size_ = typical_cell(soup_);
-  const Vec3d origin = soup_.positions.empty() ? Vec3d::Zero() : soup_.positions.front();
-  boxes_ = spatial::BoxGrid(origin, cell_size_);
+  // The grid starts a cell below the lowest corner: positions below its
+  // origin all land in its first layer of cells. (It started at the first
+  // vertex, which in a shuffled soup lies mid-model: the holes-only check of
+  // a 287,896-face soup took 42 s in 649 cells of up to 84,373 entries.)
+  const Vec3d lowest = soup_.positions.empty() ? Vec3d::Zero() : bounding_box(soup_).min();
+  boxes_ = spatial::BoxGrid(lowest - Vec3d::Constant(cell_size_), cell_size_);
   positions_.insert(soup_.positions.begin(), soup_.positions.end());
   for (std::uint32_t f = 0; f < soup_.triangles.size(); ++f) insert_face(f);
 }

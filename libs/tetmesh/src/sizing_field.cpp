@@ -52,7 +52,12 @@ TetMeshField::TetMeshField(TetMesh mesh, std::vector<double> values)
     : mesh_(std::move(mesh)), values_(std::move(values)) {
   if (mesh_.tets.empty() || values_.size() != mesh_.positions.size())
     throw UsageError("TetMeshField: a mesh with tets and one value per vertex is needed");
-  grid_ = spatial::BoxGrid(mesh_.positions.front(), cell_size(mesh_));
+  // From a cell below the lowest corner: positions below the grid's origin
+  // all land in its first layer of cells.
+  Vec3d lowest = mesh_.positions.front();
+  for (const Vec3d& p : mesh_.positions) lowest = lowest.cwiseMin(p);
+  const double cell = cell_size(mesh_);
+  grid_ = spatial::BoxGrid(lowest - Vec3d::Constant(cell), cell);
   for (std::size_t t = 0; t < mesh_.tets.size(); ++t)
     grid_.insert(std::uint32_t(t), box_min(mesh_, mesh_.tets[t]), box_max(mesh_, mesh_.tets[t]));
 }

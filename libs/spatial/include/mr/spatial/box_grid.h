@@ -26,6 +26,9 @@ namespace mr::spatial {
 class BoxGrid {
  public:
   BoxGrid() = default;
+  /// `origin` should lie below every box inserted: cells are counted from
+  /// it, and whatever lies below it shares the first layer of cells (still
+  /// found, but crowded).
   BoxGrid(const Vec3d& origin, double cell_size);
 
   void insert(std::uint32_t id, const Vec3d& lo, const Vec3d& hi);
