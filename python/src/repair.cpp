@@ -43,7 +43,7 @@ TriangleSoup rebuild_through_tets(const TriangleSoup& input, const RepairArgs& a
 
 TriangleSoup repair_soup(const TriangleSoup& input, const RepairArgs& args) {
   if (!args.remesh) {
-    tools::HolesOnlyRepair holes = tools::repair_holes_only(input, args.grid, /*accept_closed=*/true);
+    tools::HolesOnlyRepair holes = tools::repair_holes_only(input, args.grid);
     if (holes.fill) return std::move(holes.fill->surface);
   }
   return rebuild_through_tets(input, args);

@@ -7,9 +7,9 @@
 
 namespace mr::tools {
 
-HolesOnlyRepair repair_holes_only(const TriangleSoup& input, const CoordinateGrid& grid, bool accept_closed) {
+HolesOnlyRepair repair_holes_only(const TriangleSoup& input, const CoordinateGrid& grid) {
   HolesOnlyRepair r;
-  r.declined = hole_fill::defects_other_than_holes(input, accept_closed);
+  r.declined = hole_fill::defects_other_than_holes(input, /*accept_closed=*/true);
   if (!r.declined.empty()) return r;
   hole_fill::HoleFillOptions options;
   options.grid = grid;

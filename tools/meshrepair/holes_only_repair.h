@@ -18,9 +18,10 @@ struct HolesOnlyRepair {
 
 /// Fills the holes of `input` when they are all it lacks (hole_fill::
 /// defects_other_than_holes), new vertices on `grid`; a watertight input
-/// passes as it is when `accept_closed`. Declines when it has other
+/// passes as it is, at any size (checking it costs seconds where rebuilding
+/// a large one costs more and changes every face). Declines when it has other
 /// defects or when the filled surface is not closed, manifold and free of
 /// self-intersections (a hole that could not be filled).
-HolesOnlyRepair repair_holes_only(const TriangleSoup& input, const CoordinateGrid& grid, bool accept_closed);
+HolesOnlyRepair repair_holes_only(const TriangleSoup& input, const CoordinateGrid& grid);
 
 }  // namespace mr::tools

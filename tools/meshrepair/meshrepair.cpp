@@ -227,9 +227,7 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
   const double epsilon = epsilon_for(input, options.tetrahedralize);
   const CoordinateGrid grid =
       output_grid(registry, files[1], epsilon, options, write_options)(box.min(), box.max());
-  // A watertight input passes as it is at any size: checking it costs
-  // seconds where rebuilding a large one costs more and changes every face.
-  const HolesOnlyRepair holes = repair_holes_only(input, grid, /*accept_closed=*/true);
+  const HolesOnlyRepair holes = repair_holes_only(input, grid);
   declined = holes.declined;
   if (!holes.fill) return false;
   const double seconds_fill = seconds_since(start);

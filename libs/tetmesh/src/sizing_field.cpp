@@ -23,12 +23,16 @@ Vec3d box_max(const TetMesh& mesh, const Tet& t) {
   return hi;
 }
 
+Eigen::AlignedBox3d bounds(const TetMesh& mesh) {
+  Eigen::AlignedBox3d box;
+  for (const Vec3d& p : mesh.positions) box.extend(p);
+  return box;
+}
+
 // A cell about twice the mean tet's size: a few tets per cell.
-double cell_size(const TetMesh& mesh) {
-  Vec3d lo = mesh.positions.front(), hi = lo;
-  for (const Vec3d& p : mesh.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  const Vec3d extent = (hi - lo).cwiseMax(Vec3d::Constant(1e-300));
-  const double per_tet = extent.prod() / double(std::max<std::size_t>(mesh.tets.size(), 1));
+double cell_size(const Eigen::AlignedBox3d& box, std::size_t tets) {
+  const Vec3d extent = box.sizes().cwiseMax(Vec3d::Constant(1e-300));
+  const double per_tet = extent.prod() / double(std::max<std::size_t>(tets, 1));
   const double size = 2 * std::cbrt(per_tet);
   return std::isfinite(size) && size > 0 ? size : extent.maxCoeff();
 }
@@ -54,10 +58,9 @@ TetMeshField::TetMeshField(TetMesh mesh, std::vector<double> values)
     throw UsageError("TetMeshField: a mesh with tets and one value per vertex is needed");
   // From a cell below the lowest corner: positions below the grid's origin
   // all land in its first layer of cells.
-  Vec3d lowest = mesh_.positions.front();
-  for (const Vec3d& p : mesh_.positions) lowest = lowest.cwiseMin(p);
-  const double cell = cell_size(mesh_);
-  grid_ = spatial::BoxGrid(lowest - Vec3d::Constant(cell), cell);
+  const Eigen::AlignedBox3d box = bounds(mesh_);
+  const double cell = cell_size(box, mesh_.tets.size());
+  grid_ = spatial::BoxGrid(box.min() - Vec3d::Constant(cell), cell);
   for (std::size_t t = 0; t < mesh_.tets.size(); ++t)
     grid_.insert(std::uint32_t(t), box_min(mesh_, mesh_.tets[t]), box_max(mesh_, mesh_.tets[t]));
 }

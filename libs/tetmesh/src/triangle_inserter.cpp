@@ -5,6 +5,7 @@
 #include <mr/core/errors.h>
 #include <mr/kernel/constructions.h>
 #include <mr/kernel/point_box.h>
+#include <mr/tetmesh/incidence.h>
 
 #include <algorithm>
 #include <optional>
@@ -542,27 +543,15 @@ void TriangleInserter::collect_cavity() {
 bool TriangleInserter::mark_if_mesh_face() {
   if (corners_.size() != 3) return false;
   const Index a = corners_[0], b = corners_[1], c = corners_[2];
-  const Index start = seed_tet_[a];
-  if (start == kNoTet || !mesh_.tet_alive(start) || mesh_.corner_of(start, a) < 0) return false;
-  star_.assign(1, start);
-  stamp(star_stamp_, start);
-  for (std::size_t i = 0; i < star_.size(); ++i) {
-    const Index t = star_[i];
-    const int corner_a = mesh_.corner_of(t, a);
-    const int corner_b = mesh_.corner_of(t, b);
-    const int corner_c = mesh_.corner_of(t, c);
-    if (corner_b >= 0 && corner_c >= 0) {
-      const int face = 6 - corner_a - corner_b - corner_c;  // the corner that is none of the three
-      const auto ids = mesh_.surface_ids(t, face);
-      mesh_.set_surface_ids(t, face, with_id(Ids(ids.begin(), ids.end()), id_));
-      return true;
-    }
-    for (int k = 0; k < 4; ++k) {
-      const Index n = mesh_.neighbour(t, k);
-      if (k == corner_a || n == kNoTet || stamped(star_stamp_, n)) continue;
-      stamp(star_stamp_, n);
-      star_.push_back(n);
-    }
+  const Index seed = seed_tet_[a];
+  if (seed == kNoTet || !mesh_.tet_alive(seed) || mesh_.corner_of(seed, a) < 0) return false;
+  for (const Index t : tets_around_vertex(mesh_, a, seed)) {
+    const int corner_b = mesh_.corner_of(t, b), corner_c = mesh_.corner_of(t, c);
+    if (corner_b < 0 || corner_c < 0) continue;
+    const int face = 6 - mesh_.corner_of(t, a) - corner_b - corner_c;  // the corner that is none of the three
+    const auto ids = mesh_.surface_ids(t, face);
+    mesh_.set_surface_ids(t, face, with_id(Ids(ids.begin(), ids.end()), id_));
+    return true;
   }
   return false;
 }

@@ -136,8 +136,8 @@ class TriangleInserter {
   int orientation_ = 1;                 ///< sign making T's interior positive for line_side
   std::unordered_map<Index, int> plane_sign_;
   std::unordered_map<Index, std::array<std::int8_t, kMaxCorners>> line_side_;
-  std::vector<std::uint32_t> candidate_stamp_, cut_stamp_, cavity_stamp_, star_stamp_;
-  std::vector<Index> candidates_, cut_tets_, cavity_, star_;
+  std::vector<std::uint32_t> candidate_stamp_, cut_stamp_, cavity_stamp_;
+  std::vector<Index> candidates_, cut_tets_, cavity_;
   std::unordered_map<std::uint64_t, HybridPoint> plane_points_;  ///< P on edge (sorted pair), computed once
   std::unordered_map<std::uint64_t, Index> splits_;              ///< segment (sorted pair) -> its new point
   std::vector<std::array<Index, 3>> split_mesh_edges_;           ///< u, v, a tet around the edge
