@@ -33,6 +33,19 @@ TEST_CASE("a closed cube is watertight", "[check]") {
   CHECK(report.watertight());
 }
 
+TEST_CASE("the enclosed volume has the right sign on a sliver reaching far away", "[check]") {
+  // A tet with one corner 1e25 away: about its box's centre the six-fold
+  // volume is a sum of terms near 1e74 that cancel to 1e25, and rounds to 0.
+  TriangleSoup tet;
+  tet.positions = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1e25, 1e25, 1e25}};
+  tet.triangles = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
+  const check::SurfaceReport outward = check::check_surface(tet);
+  CHECK(outward.volume == Approx(1e25 / 6));
+  CHECK(outward.watertight());
+  for (Triangle& t : tet.triangles) std::swap(t[1], t[2]);
+  CHECK(check::check_surface(tet).volume == Approx(-1e25 / 6));
+}
+
 TEST_CASE("surface defects are counted", "[check]") {
   TriangleSoup open = test::cube_soup();
   open.triangles.pop_back();

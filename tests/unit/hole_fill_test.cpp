@@ -7,6 +7,7 @@
 #include <mr/check/surface_check.h>
 #include <mr/core/weld.h>
 #include <mr/hole_fill/hole_fill.h>
+#include <mr/hole_fill/zero_area_faces.h>
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
 
@@ -21,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <set>
 
 using namespace mr;
 using hole_fill::HoleOutcome;
@@ -65,7 +67,70 @@ Vec3d middle_of_patch(const hole_fill::HoleFillResult& result, std::size_t input
   return best;
 }
 
+// The unit cube with a T-junction on edge 0-2: face (0, 2, 1) split at the
+// edge's midpoint m (vertex 8) and the zero-area face (0, 2, m) closing the
+// surface, so that face (0, 4, 2) across the edge meets it along 0-2.
+TriangleSoup cube_with_zero_area_face() {
+  TriangleSoup soup = test::cube_soup();
+  soup.positions.emplace_back(0.0, 0.5, 0.0);
+  soup.triangles[0] = {0, 8, 1};
+  soup.triangles.push_back({8, 2, 1});
+  soup.triangles.push_back({0, 2, 8});
+  return soup;
+}
+
+using PositionTriple = std::array<std::array<double, 3>, 3>;
+
+// Each face as its corners' positions, sorted: comparable across files.
+std::multiset<PositionTriple> position_triples(const TriangleSoup& soup) {
+  std::multiset<PositionTriple> out;
+  for (const Triangle& t : soup.triangles) {
+    PositionTriple c;
+    for (int i = 0; i < 3; ++i)
+      c[i] = {soup.positions[t[i]].x(), soup.positions[t[i]].y(), soup.positions[t[i]].z()};
+    std::sort(c.begin(), c.end());
+    out.insert(c);
+  }
+  return out;
+}
+
 }  // namespace
+
+TEST_CASE("a zero-area face goes by splitting the face across its longest edge, nothing moved",
+          "[hole_fill]") {
+  const TriangleSoup input = cube_with_zero_area_face();
+  const hole_fill::ZeroAreaRemoval removal = hole_fill::remove_zero_area_faces(input);
+  REQUIRE(removal.dropped == 1);
+  REQUIRE(removal.split == 1);
+  REQUIRE(removal.left == 0);
+  REQUIRE(removal.surface.positions == input.positions);
+  require_watertight(removal.surface);
+  // Every face but the zero-area one and face 8, (0, 4, 2), which is now
+  // two faces meeting at m.
+  std::multiset<PositionTriple> expected = position_triples(input);
+  TriangleSoup gone;
+  gone.positions = input.positions;
+  gone.triangles = {input.triangles[8], input.triangles[13]};
+  for (const PositionTriple& t : position_triples(gone)) expected.erase(expected.find(t));
+  TriangleSoup halves;
+  halves.positions = input.positions;
+  halves.triangles = {{2, 8, 4}, {8, 0, 4}};
+  for (const PositionTriple& t : position_triples(halves)) expected.insert(t);
+  REQUIRE(position_triples(removal.surface) == expected);
+}
+
+TEST_CASE("faces naming a vertex twice and zero-area mirror pairs are dropped", "[hole_fill]") {
+  TriangleSoup input = test::cube_soup();
+  input.triangles.push_back({3, 3, 5});
+  // Two faces over one segment, facing each other: they enclose nothing.
+  for (double x : {2.0, 3.0, 4.0}) input.positions.emplace_back(x, 0.0, 0.0);
+  input.triangles.push_back({8, 10, 9});
+  input.triangles.push_back({10, 8, 9});
+  const hole_fill::ZeroAreaRemoval removal = hole_fill::remove_zero_area_faces(input);
+  REQUIRE(removal.dropped == 3);
+  REQUIRE(removal.split == 0);
+  REQUIRE(removal.surface.triangles == test::cube_soup().triangles);
+}
 
 TEST_CASE("a sphere's missing cap is filled with a faired patch close to the sphere", "[hole_fill]") {
   const TriangleSoup input = without_faces(test::sphere(1.0, 5), [](const Vec3d& c) { return c.z() > 0.8; });
@@ -268,6 +333,54 @@ TEST_CASE("meshrepair fills the holes of an input that lacks nothing else and ke
     CHECK((*figures)["memory"]["bytes_per_input_face"] ==
           Approx(peak_mb * 1048576.0 / input.triangles.size()));
   }
+}
+
+TEST_CASE("meshrepair takes zero-area faces out of an input that lacks nothing else, nothing moved",
+          "[hole_fill][e2e]") {
+  const test::TempDir dir("meshrepair_zero_area");
+  const io::Registry registry = io::make_default_registry();
+  const TriangleSoup input = cube_with_zero_area_face();
+  io::write_surface(registry, input, dir / "in.stl");
+  const test::ToolRun run = test::run_tool(
+      tools::meshrepair,
+      {(dir / "in.stl").string(), (dir / "out.glb").string(), "--stats", (dir / "s.json").string()});
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+  const nlohmann::json stats = nlohmann::json::parse(std::ifstream(dir / "s.json"));
+  REQUIRE(stats["path"] == "hole_fill");
+  REQUIRE(stats["zero_area_faces"]["taken_out"] == 1);
+  REQUIRE(stats["zero_area_faces"]["split_faces"] == 1);
+  REQUIRE(stats["holes"]["kept_input_faces"] == 12);
+  REQUIRE(stats["written_file"]["watertight"] == true);
+  REQUIRE(position_triples(io::read_surface(registry, dir / "out.glb")) ==
+          position_triples(hole_fill::remove_zero_area_faces(input).surface));
+}
+
+TEST_CASE("meshrepair turns flipped faces of an input that lacks nothing else, nothing moved",
+          "[hole_fill][e2e]") {
+  const test::TempDir dir("meshrepair_flipped");
+  const io::Registry registry = io::make_default_registry();
+  TriangleSoup input = test::sphere(1.0, 3);
+  std::size_t flipped = 0;
+  for (Triangle& t : input.triangles) {
+    const Vec3d c = (input.positions[t[0]] + input.positions[t[1]] + input.positions[t[2]]) / 3.0;
+    if (c.z() > 0.8) std::swap(t[1], t[2]), ++flipped;
+  }
+  REQUIRE(flipped > 3);
+  REQUIRE(flipped < input.triangles.size() / 4);
+  io::write_surface(registry, input, dir / "in.obj");
+  const test::ToolRun run = test::run_tool(
+      tools::meshrepair,
+      {(dir / "in.obj").string(), (dir / "out.obj").string(), "--stats", (dir / "s.json").string()});
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+  const nlohmann::json stats = nlohmann::json::parse(std::ifstream(dir / "s.json"));
+  REQUIRE(stats["path"] == "hole_fill");
+  REQUIRE(stats["flipped_faces"] == flipped);
+  REQUIRE(stats["written_file"]["watertight"] == true);
+  const TriangleSoup out = io::read_surface(registry, dir / "out.obj");
+  require_watertight(out);
+  REQUIRE(position_triples(out) == position_triples(input));
 }
 
 TEST_CASE("a watertight result is written on a finer Draco grid when the chosen one leaves no room",

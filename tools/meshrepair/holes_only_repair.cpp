@@ -1,7 +1,10 @@
 #include "holes_only_repair.h"
 
 #include <mr/check/surface_check.h>
+#include <mr/core/orientation.h>
+#include <mr/core/weld.h>
 #include <mr/hole_fill/holes_only.h>
+#include <mr/hole_fill/zero_area_faces.h>
 
 #include <utility>
 
@@ -9,11 +12,20 @@ namespace mr::tools {
 
 HolesOnlyRepair repair_holes_only(const TriangleSoup& input, const CoordinateGrid& grid) {
   HolesOnlyRepair r;
-  r.declined = hole_fill::defects_other_than_holes(input, /*accept_closed=*/true);
+  TriangleSoup welded = weld_identical_vertices(input);
+  r.flipped_faces = orient_coherently(welded).flipped;
+  hole_fill::ZeroAreaRemoval cleaned = hole_fill::remove_zero_area_faces(std::move(welded));
+  r.zero_area_dropped = cleaned.dropped;
+  r.split_faces = cleaned.split;
+  if (cleaned.surface.triangles.empty()) {
+    r.declined = "every face has zero area";
+    return r;
+  }
+  r.declined = hole_fill::defects_other_than_holes(cleaned.surface, /*accept_closed=*/true);
   if (!r.declined.empty()) return r;
   hole_fill::HoleFillOptions options;
   options.grid = grid;
-  hole_fill::HoleFillResult fill = hole_fill::fill_holes(input, options);
+  hole_fill::HoleFillResult fill = hole_fill::fill_holes(cleaned.surface, options);
   if (fill.filled() < fill.holes.size()) {
     r.declined = "a hole could not be filled";
     return r;

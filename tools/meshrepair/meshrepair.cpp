@@ -212,6 +212,16 @@ void check_output_precision(const io::Registry& registry, const std::string& out
                      epsilon);
 }
 
+// What the holes-only path kept, for its closing line.
+std::string kept_faces_phrase(const HolesOnlyRepair& holes) {
+  std::string phrase;
+  if (holes.zero_area_dropped != 0)
+    phrase += std::to_string(holes.zero_area_dropped) + " zero-area faces taken out, " +
+              std::to_string(holes.split_faces) + " faces split where one lay on their edge, ";
+  if (holes.flipped_faces != 0) phrase += std::to_string(holes.flipped_faces) + " faces turned, ";
+  return phrase + (phrase.empty() ? "every input face kept" : "every other input face kept");
+}
+
 // The holes-only path: its holes filled, the input written back with the
 // patches, checked as written. False (nothing written) when it declines.
 bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
@@ -243,12 +253,13 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
   write_provenance(options, provenance);
   if (!options.stats_path.empty())
     cli::write_stats_file(options.stats_path,
-                          make_holes_only_stats({input, *holes.fill, written, provenance.summary, epsilon,
+                          make_holes_only_stats({input, holes, written, provenance.summary, epsilon,
                                                  seconds_read, seconds_fill, seconds_write})
                               .dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << holes.fill->surface.triangles.size()
-        << " faces, watertight (" << holes.fill->holes.size() << " holes filled, every input face kept)\n";
+        << " faces, watertight (" << holes.fill->holes.size() << " holes filled, " << kept_faces_phrase(holes)
+        << ")\n";
   return true;
 }
 

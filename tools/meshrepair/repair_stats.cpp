@@ -138,8 +138,9 @@ nlohmann::json make_repair_stats(const RepairRun& run) {
 
 nlohmann::json make_holes_only_stats(const HolesOnlyRun& run) {
   const auto start = std::chrono::steady_clock::now();
+  const hole_fill::HoleFillResult& fill = *run.holes.fill;
   std::size_t patch_faces = 0, patch_vertices = 0;
-  for (const hole_fill::HoleReport& h : run.fill.holes)
+  for (const hole_fill::HoleReport& h : fill.holes)
     patch_faces += h.patch_faces, patch_vertices += h.patch_vertices;
   nlohmann::json stats = {
       {"memory", memory_figures(run.input)},
@@ -147,16 +148,19 @@ nlohmann::json make_holes_only_stats(const HolesOnlyRun& run) {
       {"input", input_defects(run.input)},
       {"epsilon_abs", run.epsilon},
       {"bbox_diagonal", bounding_box_diagonal(run.input)},
+      {"flipped_faces", run.holes.flipped_faces},
+      {"zero_area_faces",
+       {{"taken_out", run.holes.zero_area_dropped}, {"split_faces", run.holes.split_faces}}},
       {"holes",
-       {{"found", run.fill.holes.size()},
-        {"filled", run.fill.filled()},
-        {"kept_input_faces", run.fill.input_faces},
+       {{"found", fill.holes.size()},
+        {"filled", fill.filled()},
+        {"kept_input_faces", fill.input_faces - 2 * run.holes.split_faces},  // a split face is two
         {"patch_faces", patch_faces},
         {"patch_vertices", patch_vertices}}},
       {"repair",
        {{"rounded_vertices", run.written.rounding.moved},
         {"rounded_off_nearest", run.written.rounding.nearest_refused}}},
-      {"output", output_figures(run.fill.surface, run.input)},
+      {"output", output_figures(fill.surface, run.input)},
       {"provenance", provenance_figures(run.provenance)},
       {"written_file", written_figures(run.written.written.surface)},
       {"stages",

@@ -2,6 +2,7 @@
 // The --stats JSON of meshrepair: defects of the input, figures of the
 // output (measured independently with mr::check), and time per stage.
 
+#include "holes_only_repair.h"
 #include "surface_output.h"
 
 #include <mr/check/provenance.h>
@@ -32,7 +33,7 @@ nlohmann::json make_repair_stats(const RepairRun& run);
 /// The holes-only path (holes_only_repair.h): input, holes, output figures, seconds.
 struct HolesOnlyRun {
   const TriangleSoup& input;
-  const hole_fill::HoleFillResult& fill;
+  const HolesOnlyRepair& holes;  ///< with its fill
   const SurfaceWrite& written;
   const check::ProvenanceSummary& provenance;
   double epsilon = 0.0;  ///< the envelope the tetrahedral path would have used (sets Draco's bits)

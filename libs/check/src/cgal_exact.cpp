@@ -7,9 +7,11 @@
 #include <mr/check/self_intersections.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Mpzf.h>
 #include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
+#include <limits>
 #include <vector>
 
 namespace mr::check {
@@ -101,6 +103,24 @@ int orient3d_sign(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d
   // CGAL's orientation(p,q,r,s) is the sign of det[q-p, r-p, s-p], the same
   // convention as ours.
   return static_cast<int>(CGAL::orientation(to_point(a), to_point(b), to_point(c), to_point(d)));
+}
+
+double exact_six_volume(const std::vector<Vec3d>& positions, const std::vector<Triangle>& triangles) {
+  CGAL::Mpzf sum(0);
+  for (const Triangle& t : triangles) {
+    const Vec3d &a = positions[t[0]], &b = positions[t[1]], &c = positions[t[2]];
+    const auto m = [](double x) { return CGAL::Mpzf(x); };
+    // a . (b x c), every product exact
+    sum = sum + m(a.x()) * (m(b.y()) * m(c.z()) - m(b.z()) * m(c.y())) +
+          m(a.y()) * (m(b.z()) * m(c.x()) - m(b.x()) * m(c.z())) +
+          m(a.z()) * (m(b.x()) * m(c.y()) - m(b.y()) * m(c.x()));
+  }
+  const int sign = CGAL::sign(sum);
+  const double rounded = CGAL::to_double(sum);
+  // to_double may flush a tiny sum to zero; the sign is what callers need.
+  if (sign != 0 && (rounded == 0.0 || (rounded > 0) != (sign > 0)))
+    return sign * std::numeric_limits<double>::min();
+  return rounded;
 }
 
 }  // namespace detail

@@ -6,6 +6,7 @@
 #include <mr/core/union_find.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <tuple>
 
@@ -94,19 +95,37 @@ void count_faces(const detail::Welded& mesh, SurfaceReport& report) {
   report.components = static_cast<std::size_t>(std::unique(roots.begin(), roots.end()) - roots.begin());
 }
 
+// The sum of the absolute values of the six products in a . (b x c).
+double triple_product_magnitude(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  const Vec3d x = a.cwiseAbs(), y = b.cwiseAbs(), z = c.cwiseAbs();
+  return x.x() * (y.y() * z.z() + y.z() * z.y()) + x.y() * (y.z() * z.x() + y.x() * z.z()) +
+         x.z() * (y.x() * z.y() + y.y() * z.x());
+}
+
 double signed_volume(const detail::Welded& mesh) {
-  if (mesh.positions.empty()) return 0;
-  Vec3d lo = mesh.positions[0], hi = lo;
-  for (const Vec3d& p : mesh.positions) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const Vec3d center = 0.5 * (lo + hi);  // a nearby origin keeps the sum accurate
-  double six_volume = 0;
+  if (mesh.triangles.empty()) return 0;
+  // The box of the corners only: an unused vertex far away would move the
+  // origin off the surface.
+  Vec3d lo = mesh.positions[mesh.triangles[0][0]], hi = lo;
   for (const Triangle& t : mesh.triangles)
-    six_volume += (mesh.positions[t[0]] - center)
-                      .dot((mesh.positions[t[1]] - center).cross(mesh.positions[t[2]] - center));
-  return six_volume / 6;
+    for (const Index v : t) {
+      lo = lo.cwiseMin(mesh.positions[v]);
+      hi = hi.cwiseMax(mesh.positions[v]);
+    }
+  const Vec3d center = 0.5 * (lo + hi);  // a nearby origin keeps the sum accurate
+  double six_volume = 0, magnitude = 0;
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3d a = mesh.positions[t[0]] - center, b = mesh.positions[t[1]] - center,
+                c = mesh.positions[t[2]] - center;
+    six_volume += a.dot(b.cross(c));
+    magnitude += triple_product_magnitude(a, b, c);
+  }
+  // Ten roundings per term (the differences, products and sums) and one per
+  // addition: a sum within that bound of zero may have the wrong sign (a
+  // sliver reaching far away), and the sign says whether the surface faces out.
+  const double bound = (10.0 + static_cast<double>(mesh.triangles.size())) * 0x1p-53 * magnitude;
+  if (std::abs(six_volume) > bound) return six_volume / 6;
+  return detail::exact_six_volume(mesh.positions, mesh.triangles) / 6;
 }
 
 }  // namespace
