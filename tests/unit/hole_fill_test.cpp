@@ -7,7 +7,7 @@
 #include <mr/check/surface_check.h>
 #include <mr/core/weld.h>
 #include <mr/hole_fill/hole_fill.h>
-#include <mr/hole_fill/zero_area_faces.h>
+#include <mr/hole_fill/redundant_faces.h>
 #include <mr/io/default_registry.h>
 #include <mr/io/mesh_io.h>
 
@@ -117,6 +117,15 @@ TEST_CASE("a zero-area face goes by splitting the face across its longest edge, 
   halves.triangles = {{2, 8, 4}, {8, 0, 4}};
   for (const PositionTriple& t : position_triples(halves)) expected.insert(t);
   REQUIRE(position_triples(removal.surface) == expected);
+}
+
+TEST_CASE("copies of a face are dropped whichever way they face, the first kept", "[hole_fill]") {
+  TriangleSoup soup = test::cube_soup();
+  soup.triangles.push_back({2, 1, 0});  // face 0 turned
+  soup.triangles.push_back({1, 2, 3});  // face 1 again
+  soup.triangles.push_back({3, 1, 2});  // face 1 rotated
+  REQUIRE(hole_fill::remove_repeated_faces(soup) == 3);
+  REQUIRE(soup.triangles == test::cube_soup().triangles);
 }
 
 TEST_CASE("faces naming a vertex twice and zero-area mirror pairs are dropped", "[hole_fill]") {
@@ -356,11 +365,12 @@ TEST_CASE("meshrepair takes zero-area faces out of an input that lacks nothing e
           position_triples(hole_fill::remove_zero_area_faces(input).surface));
 }
 
-TEST_CASE("meshrepair turns flipped faces of an input that lacks nothing else, nothing moved",
+TEST_CASE("meshrepair drops repeated faces and turns flipped ones of an input that lacks nothing else",
           "[hole_fill][e2e]") {
   const test::TempDir dir("meshrepair_flipped");
   const io::Registry registry = io::make_default_registry();
-  TriangleSoup input = test::sphere(1.0, 3);
+  const TriangleSoup sphere = test::sphere(1.0, 3);
+  TriangleSoup input = sphere;
   std::size_t flipped = 0;
   for (Triangle& t : input.triangles) {
     const Vec3d c = (input.positions[t[0]] + input.positions[t[1]] + input.positions[t[2]]) / 3.0;
@@ -368,19 +378,29 @@ TEST_CASE("meshrepair turns flipped faces of an input that lacks nothing else, n
   }
   REQUIRE(flipped > 3);
   REQUIRE(flipped < input.triangles.size() / 4);
-  io::write_surface(registry, input, dir / "in.obj");
+  // Every tenth face doubled, every other copy turned the other way.
+  std::size_t copies = 0;
+  for (std::size_t f = 0; f < sphere.triangles.size(); f += 10, ++copies) {
+    Triangle copy = input.triangles[f];
+    if (copies % 2) std::swap(copy[0], copy[1]);
+    input.triangles.push_back(copy);
+  }
+  io::write_surface(registry, input, dir / "in.stl");
   const test::ToolRun run = test::run_tool(
       tools::meshrepair,
-      {(dir / "in.obj").string(), (dir / "out.obj").string(), "--stats", (dir / "s.json").string()});
+      {(dir / "in.stl").string(), (dir / "out.obj").string(), "--stats", (dir / "s.json").string()});
   INFO(run.err);
   REQUIRE(run.exit_code == 0);
   const nlohmann::json stats = nlohmann::json::parse(std::ifstream(dir / "s.json"));
   REQUIRE(stats["path"] == "hole_fill");
+  REQUIRE(stats["repeated_faces"] == copies);
   REQUIRE(stats["flipped_faces"] == flipped);
   REQUIRE(stats["written_file"]["watertight"] == true);
-  const TriangleSoup out = io::read_surface(registry, dir / "out.obj");
-  require_watertight(out);
-  REQUIRE(position_triples(out) == position_triples(input));
+  REQUIRE(stats["provenance"]["kept_area_share"] == 1.0);
+  // The sphere's faces as the STL input holds them (the copies come last).
+  TriangleSoup expected = io::read_surface(registry, dir / "in.stl");
+  expected.triangles.resize(sphere.triangles.size());
+  REQUIRE(position_triples(io::read_surface(registry, dir / "out.obj")) == position_triples(expected));
 }
 
 TEST_CASE("a watertight result is written on a finer Draco grid when the chosen one leaves no room",

@@ -4,7 +4,7 @@
 #include <mr/core/orientation.h>
 #include <mr/core/weld.h>
 #include <mr/hole_fill/holes_only.h>
-#include <mr/hole_fill/zero_area_faces.h>
+#include <mr/hole_fill/redundant_faces.h>
 
 #include <utility>
 
@@ -13,6 +13,7 @@ namespace mr::tools {
 HolesOnlyRepair repair_holes_only(const TriangleSoup& input, const CoordinateGrid& grid) {
   HolesOnlyRepair r;
   TriangleSoup welded = weld_identical_vertices(input);
+  r.repeated_faces = hole_fill::remove_repeated_faces(welded);
   r.flipped_faces = orient_coherently(welded).flipped;
   hole_fill::ZeroAreaRemoval cleaned = hole_fill::remove_zero_area_faces(std::move(welded));
   r.zero_area_dropped = cleaned.dropped;

@@ -15,13 +15,14 @@ struct HolesOnlyRepair {
   std::string declined;                           ///< why the path was not taken; empty when it was
   std::optional<hole_fill::HoleFillResult> fill;  ///< set when it was: a watertight surface, outward
   std::size_t zero_area_dropped = 0;              ///< zero-area input faces taken out first
-  std::size_t split_faces = 0;    ///< input faces split where a collinear face lay on their edge
-  std::size_t flipped_faces = 0;  ///< input faces turned to agree with their neighbours
+  std::size_t split_faces = 0;     ///< input faces split where a collinear face lay on their edge
+  std::size_t repeated_faces = 0;  ///< copies of an earlier input face (either way round) dropped
+  std::size_t flipped_faces = 0;   ///< input faces turned to agree with their neighbours
 };
 
 /// Fills the holes of `input` when they are all it lacks (hole_fill::
-/// defects_other_than_holes) once its zero-area faces are taken out
-/// (hole_fill::remove_zero_area_faces: nothing moves) and its faces turned to
+/// defects_other_than_holes) once its copies of a face and its zero-area
+/// faces are taken out (hole_fill/redundant_faces.h: nothing moves) and its faces turned to
 /// agree with their neighbours (orient_coherently), new vertices on `grid`; a watertight input
 /// passes as it is, at any size (checking it costs seconds where rebuilding
 /// a large one costs more and changes every face). Declines when it has other

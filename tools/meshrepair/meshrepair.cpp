@@ -215,6 +215,7 @@ void check_output_precision(const io::Registry& registry, const std::string& out
 // What the holes-only path kept, for its closing line.
 std::string kept_faces_phrase(const HolesOnlyRepair& holes) {
   std::string phrase;
+  if (holes.repeated_faces != 0) phrase += std::to_string(holes.repeated_faces) + " repeated faces dropped, ";
   if (holes.zero_area_dropped != 0)
     phrase += std::to_string(holes.zero_area_dropped) + " zero-area faces taken out, " +
               std::to_string(holes.split_faces) + " faces split where one lay on their edge, ";

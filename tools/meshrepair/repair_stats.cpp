@@ -148,6 +148,7 @@ nlohmann::json make_holes_only_stats(const HolesOnlyRun& run) {
       {"input", input_defects(run.input)},
       {"epsilon_abs", run.epsilon},
       {"bbox_diagonal", bounding_box_diagonal(run.input)},
+      {"repeated_faces", run.holes.repeated_faces},
       {"flipped_faces", run.holes.flipped_faces},
       {"zero_area_faces",
        {{"taken_out", run.holes.zero_area_dropped}, {"split_faces", run.holes.split_faces}}},

@@ -1,6 +1,7 @@
 #pragma once
-// Zero-area faces taken out of a surface without moving anything, so that
-// an input whose other defects are only holes keeps every other face.
+// Faces that add nothing to a surface (copies of another face, zero-area
+// faces) taken out without moving anything, so that an input whose other
+// defects are only holes keeps every other face.
 
 #include <mr/core/triangle_soup.h>
 
@@ -16,6 +17,12 @@ struct ZeroAreaRemoval {
   std::size_t split = 0;    ///< faces split at the middle corner of a collinear face on their edge
   std::size_t left = 0;     ///< collinear faces that could not be taken out (nothing changed for them)
 };
+
+/// `welded` (welded by position) with every face over the same three
+/// vertices as an earlier face dropped, in either orientation (a copy turned
+/// against the kept one is the common case: orient_coherently then decides
+/// which way the kept one faces). Returns how many were dropped.
+std::size_t remove_repeated_faces(TriangleSoup& welded);
 
 /// Takes the zero-area faces out of `welded` (welded by position: no two
 /// vertices share one), exactly and without moving a point of the surface:

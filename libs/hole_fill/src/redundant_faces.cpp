@@ -1,4 +1,4 @@
-#include <mr/hole_fill/zero_area_faces.h>
+#include <mr/hole_fill/redundant_faces.h>
 
 #include "mesh_keys.h"
 
@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace mr::hole_fill {
 namespace {
@@ -17,6 +18,13 @@ bool between(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
     if (b[axis] < std::min(a[axis], c[axis]) || b[axis] > std::max(a[axis], c[axis])) return false;
   return true;
 }
+
+struct CornerSetHash {
+  std::size_t operator()(const std::array<Index, 3>& c) const {
+    return std::hash<std::uint64_t>()((std::uint64_t(c[0]) * 0x9E3779B97F4A7C15ull) ^
+                                      (std::uint64_t(c[1]) << 21) ^ (std::uint64_t(c[2]) << 42) ^ c[2]);
+  }
+};
 
 bool same_corners(Triangle a, Triangle b) {
   std::sort(a.begin(), a.end());
@@ -134,6 +142,18 @@ bool zero_area(const TriangleSoup& soup, const Triangle& t) {
 }
 
 }  // namespace
+
+std::size_t remove_repeated_faces(TriangleSoup& welded) {
+  std::unordered_set<std::array<Index, 3>, CornerSetHash> seen;
+  seen.reserve(welded.triangles.size());
+  const std::size_t before = welded.triangles.size();
+  std::erase_if(welded.triangles, [&](const Triangle& t) {
+    std::array<Index, 3> corners = t;
+    std::sort(corners.begin(), corners.end());
+    return !seen.insert(corners).second;
+  });
+  return before - welded.triangles.size();
+}
 
 ZeroAreaRemoval remove_zero_area_faces(TriangleSoup welded) {
   ZeroAreaRemoval removal;
