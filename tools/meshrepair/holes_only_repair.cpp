@@ -31,9 +31,13 @@ HolesOnlyRepair repair_holes_only(const TriangleSoup& input, const CoordinateGri
     r.declined = "a hole could not be filled";
     return r;
   }
-  const check::SurfaceReport report = check::check_surface(fill.surface);
+  // Without patches the surface is the one defects_other_than_holes found
+  // free of intersections, exactly: no need to look again.
+  check::SurfaceCheckOptions check_options;
+  check_options.self_intersections = !fill.holes.empty();
+  const check::SurfaceReport report = check::check_surface(fill.surface, check_options);
   if (!report.closed() || !report.manifold() || report.inconsistent_edges || report.degenerate_faces ||
-      report.self_intersecting_pairs != 0) {
+      (check_options.self_intersections && report.self_intersecting_pairs != 0)) {
     r.declined = "the filled surface is not watertight: " + check::watertight_failures(report);
     return r;
   }

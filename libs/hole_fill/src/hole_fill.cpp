@@ -229,18 +229,22 @@ void prepare(HoleWork& w, const TriangleSoup& welded, const VertexFaces& around,
 }  // namespace
 
 HoleFillResult fill_holes(const TriangleSoup& input, const HoleFillOptions& options) {
-  const TriangleSoup welded = weld_identical_vertices(input);
+  TriangleSoup welded = weld_identical_vertices(input);
+  HoleFillResult result;
+  result.input_faces = welded.triangles.size();
+  detail::BorderLoops border = detail::find_border_loops(welded);
+  result.open_border_edges = border.open_edges;
+  if (border.loops.empty()) {  // nothing to fill, nothing to test patches against
+    result.surface = std::move(welded);
+    return result;
+  }
   const VertexFaces around = faces_around_vertices(welded);
   std::vector<HoleWork> work;
-  detail::BorderLoops border = detail::find_border_loops(welded);
   for (Hole& hole : detail::group_islands(welded, std::move(border.loops)))
     work.push_back(make_work(welded, std::move(hole), options));
   tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
     if (work[i].report.outcome == HoleOutcome::failed) prepare(work[i], welded, around, options);
   });
-  HoleFillResult result;
-  result.input_faces = welded.triangles.size();
-  result.open_border_edges = border.open_edges;
   detail::FilledSurface surface(welded);
   // Accepted in order; a hole with islands that no patch fills is retried
   // as separate loops, appended to the work.

@@ -9,22 +9,25 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <set>
 #include <unordered_map>
+#include <vector>
 
 namespace mr::hole_fill {
 namespace {
 
 std::string face_refusal(const TriangleSoup& soup) {
-  std::set<std::array<Index, 3>> seen;
+  std::vector<std::array<Index, 3>> corner_sets;
+  corner_sets.reserve(soup.triangles.size());
   for (const Triangle& t : soup.triangles) {
     if (detail::repeats_a_vertex(t) ||
         collinear(soup.positions[t[0]], soup.positions[t[1]], soup.positions[t[2]]))
       return "a face is degenerate";
-    std::array<Index, 3> sorted = t;
+    std::array<Index, 3>& sorted = corner_sets.emplace_back(t);
     std::sort(sorted.begin(), sorted.end());
-    if (!seen.insert(sorted).second) return "a face is repeated";
   }
+  std::sort(corner_sets.begin(), corner_sets.end());
+  if (std::adjacent_find(corner_sets.begin(), corner_sets.end()) != corner_sets.end())
+    return "a face is repeated";
   return {};
 }
 
