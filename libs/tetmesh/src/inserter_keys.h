@@ -1,6 +1,6 @@
 #pragma once
-// Keys and small comparisons shared by the two halves of the triangle
-// inserter (triangle_inserter.cpp, triangle_inserter_cavity.cpp).
+// Keys and small helpers shared by the parts of the triangle inserter
+// (triangle_inserter*.cpp).
 
 #include <mr/core/types.h>
 
@@ -8,8 +8,21 @@
 #include <array>
 #include <cstdint>
 #include <utility>
+#include <vector>
 
 namespace mr::tetmesh::detail {
+
+/// A tet's six edges as pairs of corners.
+inline constexpr std::array<std::array<int, 2>, 6> kTetEdges{
+    {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
+
+/// `ids` (sorted) with `id` in its place.
+inline std::vector<std::uint32_t> with_id(std::vector<std::uint32_t> ids, std::uint32_t id) {
+  if (std::find(ids.begin(), ids.end(), id) == ids.end()) {
+    ids.insert(std::upper_bound(ids.begin(), ids.end(), id), id);
+  }
+  return ids;
+}
 
 /// A segment (unordered vertex pair) as one integer.
 inline std::uint64_t segment_key(Index u, Index v) {
