@@ -55,8 +55,9 @@ The meshrepair tool on arrays. The output is closed, edge- and vertex-manifold,
 oriented outward, free of self-intersections and zero-area faces, and within
 epsilon of the input wherever the input had surface (holes and gaps are
 filled). A watertight input comes back as it is, and one whose only defects
-are holes keeps every face and gets faired patches, at any size (unless
-remesh=True); any other input goes through the tetrahedral fast path, which
+are holes, repeated faces, flipped faces or zero-area faces keeps every other
+face (the flipped ones turned back) and gets faired patches, at any size
+(unless remesh=True); any other input goes through the tetrahedral fast path, which
 keeps the input triangles away from defects on inputs of up to 50,000 faces
 and rebuilds larger ones, or every input with remesh=True.
 
