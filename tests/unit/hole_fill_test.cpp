@@ -94,6 +94,21 @@ std::multiset<PositionTriple> position_triples(const TriangleSoup& soup) {
   return out;
 }
 
+// meshrepair on `input` written as dir/in.stl, output dir/`out`: it must
+// succeed through the holes-only path. Its --stats.
+nlohmann::json repaired_by_holes_only(const TriangleSoup& input, const test::TempDir& dir,
+                                      const std::string& out) {
+  io::write_surface(io::make_default_registry(), input, dir / "in.stl");
+  const test::ToolRun run =
+      test::run_tool(tools::meshrepair,
+                     {(dir / "in.stl").string(), (dir / out).string(), "--stats", (dir / "s.json").string()});
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+  nlohmann::json stats = nlohmann::json::parse(std::ifstream(dir / "s.json"));
+  REQUIRE(stats["path"] == "hole_fill");
+  return stats;
+}
+
 }  // namespace
 
 TEST_CASE("a zero-area face goes by splitting the face across its longest edge, nothing moved",
@@ -349,14 +364,7 @@ TEST_CASE("meshrepair takes zero-area faces out of an input that lacks nothing e
   const test::TempDir dir("meshrepair_zero_area");
   const io::Registry registry = io::make_default_registry();
   const TriangleSoup input = cube_with_zero_area_face();
-  io::write_surface(registry, input, dir / "in.stl");
-  const test::ToolRun run = test::run_tool(
-      tools::meshrepair,
-      {(dir / "in.stl").string(), (dir / "out.glb").string(), "--stats", (dir / "s.json").string()});
-  INFO(run.err);
-  REQUIRE(run.exit_code == 0);
-  const nlohmann::json stats = nlohmann::json::parse(std::ifstream(dir / "s.json"));
-  REQUIRE(stats["path"] == "hole_fill");
+  const nlohmann::json stats = repaired_by_holes_only(input, dir, "out.glb");
   REQUIRE(stats["zero_area_faces"]["taken_out"] == 1);
   REQUIRE(stats["zero_area_faces"]["split_faces"] == 1);
   REQUIRE(stats["holes"]["kept_input_faces"] == 12);
@@ -385,14 +393,7 @@ TEST_CASE("meshrepair drops repeated faces and turns flipped ones of an input th
     if (copies % 2) std::swap(copy[0], copy[1]);
     input.triangles.push_back(copy);
   }
-  io::write_surface(registry, input, dir / "in.stl");
-  const test::ToolRun run = test::run_tool(
-      tools::meshrepair,
-      {(dir / "in.stl").string(), (dir / "out.obj").string(), "--stats", (dir / "s.json").string()});
-  INFO(run.err);
-  REQUIRE(run.exit_code == 0);
-  const nlohmann::json stats = nlohmann::json::parse(std::ifstream(dir / "s.json"));
-  REQUIRE(stats["path"] == "hole_fill");
+  const nlohmann::json stats = repaired_by_holes_only(input, dir, "out.obj");
   REQUIRE(stats["repeated_faces"] == copies);
   REQUIRE(stats["flipped_faces"] == flipped);
   REQUIRE(stats["written_file"]["watertight"] == true);
