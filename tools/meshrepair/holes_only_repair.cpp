@@ -22,7 +22,7 @@ HolesOnlyRepair repair_holes_only(const TriangleSoup& input, const CoordinateGri
     r.declined = "every face has zero area";
     return r;
   }
-  r.declined = hole_fill::defects_other_than_holes(cleaned.surface, /*accept_closed=*/true);
+  r.declined = hole_fill::defects_other_than_holes(cleaned.surface);
   if (!r.declined.empty()) return r;
   hole_fill::HoleFillOptions options;
   options.grid = grid;

@@ -3,6 +3,7 @@
 
 #include <mr/core/types.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <utility>
 
@@ -14,6 +15,12 @@ inline std::uint64_t directed_edge_key(Index a, Index b) { return (std::uint64_t
 /// The edge {a, b}, either way round, as one integer.
 inline std::uint64_t edge_key(Index a, Index b) {
   return a < b ? directed_edge_key(a, b) : directed_edge_key(b, a);
+}
+
+/// A face's corners in increasing order: the key of its vertex set.
+inline Triangle sorted_corners(Triangle t) {
+  std::sort(t.begin(), t.end());
+  return t;
 }
 
 /// A face naming one vertex twice (no edge structure; skipped everywhere).

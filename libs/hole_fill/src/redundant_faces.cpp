@@ -26,12 +26,6 @@ struct CornerSetHash {
   }
 };
 
-bool same_corners(Triangle a, Triangle b) {
-  std::sort(a.begin(), a.end());
-  std::sort(b.begin(), b.end());
-  return a == b;
-}
-
 // The faces of a welded surface, with the face on each directed edge, as
 // faces are dropped and split.
 class EdgeFaces {
@@ -118,7 +112,7 @@ bool take_out_collinear(EdgeFaces& faces, std::size_t f, ZeroAreaRemoval& remova
       return true;
     }
     const Triangle& g = faces.soup().triangles[static_cast<std::size_t>(across)];
-    if (same_corners(g, t)) {  // f and g enclose nothing: both go
+    if (detail::sorted_corners(g) == detail::sorted_corners(t)) {  // f and g enclose nothing: both go
       faces.drop(f);
       faces.drop(static_cast<std::size_t>(across));
       removal.dropped += 2;
@@ -147,11 +141,8 @@ std::size_t remove_repeated_faces(TriangleSoup& welded) {
   std::unordered_set<std::array<Index, 3>, CornerSetHash> seen;
   seen.reserve(welded.triangles.size());
   const std::size_t before = welded.triangles.size();
-  std::erase_if(welded.triangles, [&](const Triangle& t) {
-    std::array<Index, 3> corners = t;
-    std::sort(corners.begin(), corners.end());
-    return !seen.insert(corners).second;
-  });
+  std::erase_if(welded.triangles,
+                [&](const Triangle& t) { return !seen.insert(detail::sorted_corners(t)).second; });
   return before - welded.triangles.size();
 }
 

@@ -8,14 +8,14 @@
 
 namespace mr::hole_fill {
 
-/// Why `input`, welded by identical positions, has defects other than holes
-/// ("faces meet away from their shared vertices and edges", "no hole", ...),
-/// or an empty string when holes are all it lacks to be watertight (or,
-/// with `accept_closed`, it is watertight already): no degenerate or
-/// repeated face, no edge of more than two faces,
-/// two-face edges traversed both ways, and no two faces meet except in the
-/// vertices and edges they share (exact predicates). A vertex where the
-/// border pinches is allowed: filling both holes closes it.
-std::string defects_other_than_holes(const TriangleSoup& input, bool accept_closed = false);
+/// Why `welded` (welded by identical positions: no two vertices share one)
+/// has defects other than holes ("faces meet away from their shared
+/// vertices and edges", ...), or an empty string when holes are all it lacks
+/// to be watertight, or it is watertight already: no degenerate or repeated
+/// face, no edge of more than two faces, two-face edges traversed both ways,
+/// and no two faces meet except in the vertices and edges they share (exact
+/// predicates). A vertex where the border pinches is allowed: filling both
+/// holes closes it.
+std::string defects_other_than_holes(const TriangleSoup& welded);
 
 }  // namespace mr::hole_fill
