@@ -9,6 +9,7 @@
 #include <fast_path.h>
 #include <holes_only_repair.h>
 #include <mr/cli/run_tool.h>
+#include <mr/core/errors.h>
 #include <mr/repair/repair.h>
 #include <mr/tetmesh/tetrahedralize.h>
 
@@ -28,17 +29,29 @@ struct RepairArgs {
 
 // Fast path of the tetrahedralization, then the boundary of the kept tets
 // made manifold, peeled and cleaned up inside the envelope of the input.
-TriangleSoup rebuild_through_tets(const TriangleSoup& input, const RepairArgs& args) {
-  const tools::RebuildMode mode = tools::rebuild_mode(
-      input.triangles.size(), args.remesh ? std::optional(tools::RebuildMode::remesh) : std::nullopt);
-  const tetmesh::PipelineResult pipeline =
-      tetmesh::tetrahedralize(input, tools::repair_pipeline_options(args.tetrahedralize, mode));
+TriangleSoup rebuild_in_mode(const TriangleSoup& input, const RepairArgs& args, tools::RebuildMode mode) {
+  const tools::RepairTets tets = tools::tetrahedralize_for_repair(input, args.tetrahedralize, mode, {});
+  const tetmesh::PipelineResult& pipeline = tets.pipeline;
   repair::RepairOptions repair_options =
-      tools::surface_repair_options(pipeline, args.tetrahedralize.threads, args.cleanup, mode);
+      tools::surface_repair_options(pipeline, args.tetrahedralize.threads, args.cleanup, tets.mode);
   repair_options.output_grid = [grid = args.grid](const Vec3d&, const Vec3d&) { return grid; };
   return repair::repair_surface_from_tets(pipeline.mesh, tools::inside_labels(pipeline), input,
                                           repair_options)
       .surface;
+}
+
+// As the tool does: a failure of the kept-input run (the rounding to the
+// grid finding no place beside kept faces) gives way to the full rebuild,
+// which always has that room.
+TriangleSoup rebuild_through_tets(const TriangleSoup& input, const RepairArgs& args) {
+  const tools::RebuildMode mode = tools::rebuild_mode(
+      input.triangles.size(), args.remesh ? std::optional(tools::RebuildMode::remesh) : std::nullopt);
+  try {
+    return rebuild_in_mode(input, args, mode);
+  } catch (const RunError&) {
+    if (mode != tools::RebuildMode::keep_input) throw;
+    return rebuild_in_mode(input, args, tools::RebuildMode::remesh);
+  }
 }
 
 TriangleSoup repair_soup(const TriangleSoup& input, const RepairArgs& args) {

@@ -15,6 +15,7 @@
 #include <mr/tetmesh/insertion.h>
 #include <mr/tetmesh/tetrahedralize.h>
 
+#include <fast_path.h>
 #include <meshrepair.h>
 
 #include <catch2/catch.hpp>
@@ -99,26 +100,32 @@ TEST_CASE("meshrepair keeps the input triangles away from an intersection, bit f
   REQUIRE(check::check_surface(output).watertight());
   const nlohmann::json stats = read_json(dir / "s.json");
   const double epsilon = stats["epsilon_abs"];
+  REQUIRE(stats["keep_input_band_rings"] == 0);  // only the faces that meet others were simplified
 
-  // Every triangle of sphere a farther than 2 epsilon outside sphere b (its
-  // corners, hence all of it: b is convex) is an output face as it was.
+  // Every triangle of sphere a that no face of b cuts and whose corners are
+  // outside b (hence all of it: b is convex and inside the unit ball) is an
+  // output face as it was, those beside the intersection curve included:
+  // only the faces that meet another improperly are simplified.
+  const std::vector<std::uint8_t> cut = spatial::faces_meeting_others(input);
   const std::set<CornerSet> out_faces = faces_of(output);
-  std::size_t far = 0, inside = 0;
+  std::size_t outside = 0, beside_cut = 0, inside = 0;
   for (std::size_t f = 0; f < spheres.a.triangles.size(); ++f) {
     double nearest = 1e300, farthest = 0.0;
     for (Index v : spheres.a.triangles[f]) {
       const double d = (spheres.a.positions[v] - spheres.centre_b).norm();
       nearest = std::min(nearest, d), farthest = std::max(farthest, d);
     }
-    if (nearest > 1.0 + 2.0 * epsilon) {
-      ++far;
+    if (nearest > 1.0 && !cut[f]) {
+      ++outside;
+      beside_cut += nearest < 1.0 + 2.0 * epsilon;
       REQUIRE(out_faces.count(corner_set(spheres.a, f)) == 1);
     } else if (farthest < 0.99) {
       ++inside;  // inside b: not part of the union's surface
       REQUIRE(out_faces.count(corner_set(spheres.a, f)) == 0);
     }
   }
-  REQUIRE(far > spheres.a.triangles.size() / 2);
+  REQUIRE(outside > spheres.a.triangles.size() / 2);
+  REQUIRE(beside_cut > 0);
   REQUIRE(inside > 0);
 
   // The provenance file follows the written faces; kept faces name an input
@@ -139,6 +146,34 @@ TEST_CASE("meshrepair keeps the input triangles away from an intersection, bit f
   }
   REQUIRE(stats["provenance"]["kept_faces"] == kept);
   REQUIRE(stats["provenance"]["kept_area_share"].get<double>() > 0.9);
+}
+
+TEST_CASE("keeping the input widens the band around defects, then rebuilds, as its tet budget says",
+          "[repair][keep]") {
+  const TriangleSoup input = OverlappingSpheres().both();
+  const tetmesh::TetrahedralizeOptions defaults = tools::repair_defaults();
+  tools::RepairTetsOptions options;
+  tools::RepairTets tets =
+      tools::tetrahedralize_for_repair(input, defaults, tools::RebuildMode::keep_input, options);
+  REQUIRE(tets.mode == tools::RebuildMode::keep_input);
+  REQUIRE(tets.band_rings == 0);
+  REQUIRE(tets.gave_way.empty());
+
+  options.tet_budget = 10;
+  std::vector<std::string> told;
+  options.on_give_way = [&](const std::string& why, const std::string&) { told.push_back(why); };
+  tets = tools::tetrahedralize_for_repair(input, defaults, tools::RebuildMode::keep_input, options);
+  REQUIRE(tets.mode == tools::RebuildMode::remesh);
+  REQUIRE(tets.band_rings == -1);
+  REQUIRE(tets.gave_way.size() == tools::kKeepInputBands.size());
+  REQUIRE(told == tets.gave_way);
+  REQUIRE(!tets.pipeline.mesh.tets.empty());
+
+  options.keep_or_nothing = true;  // the widest band runs without a budget
+  tets = tools::tetrahedralize_for_repair(input, defaults, tools::RebuildMode::keep_input, options);
+  REQUIRE(tets.mode == tools::RebuildMode::keep_input);
+  REQUIRE(tets.band_rings == tools::kKeepInputBands.back());
+  REQUIRE(tets.gave_way.size() == tools::kKeepInputBands.size() - 1);
 }
 
 TEST_CASE("meshrepair --remesh rebuilds every face", "[repair][keep][e2e]") {
@@ -261,6 +296,44 @@ TEST_CASE("simplification leaves frozen faces as they are", "[simplify][keep]") 
   for (const CornerSet& face : frozen) REQUIRE(out.count(face) == 1);
 
   options.frozen_faces.pop_back();
+  REQUIRE_THROWS_AS(simplify::simplify_in_envelope(sphere, options), UsageError);
+}
+
+TEST_CASE("simplification merges a frozen fan back into its triangle where asked", "[simplify][keep]") {
+  // A sphere whose face (a, b, c) is fanned through the midpoint m of edge
+  // ab, as meshrepair's put-back does when a rebuilt neighbour uses a point
+  // on its edge; the neighbour (b, a, d) is split at m too.
+  TriangleSoup sphere = test::sphere(1.0, 3);
+  const Triangle t = sphere.triangles[0];
+  const Index a = t[0], b = t[1], c = t[2];
+  std::size_t neighbour = 0;
+  Index d = 0;
+  for (std::size_t f = 1; f < sphere.triangles.size(); ++f)
+    for (int i = 0; i < 3; ++i)
+      if (sphere.triangles[f][i] == b && sphere.triangles[f][(i + 1) % 3] == a)
+        neighbour = f, d = sphere.triangles[f][(i + 2) % 3];
+  REQUIRE(neighbour != 0);
+  const TriangleSoup whole = sphere;
+  const auto m = static_cast<Index>(sphere.positions.size());
+  sphere.positions.push_back((sphere.positions[a] + sphere.positions[b]) / 2.0);
+  sphere.triangles[0] = {a, m, c};
+  sphere.triangles.push_back({m, b, c});
+  sphere.triangles[neighbour] = {b, m, d};
+  sphere.triangles.push_back({m, a, d});
+
+  simplify::SimplifyOptions options;
+  options.epsilon_rel = 1e-2;
+  options.frozen_faces.assign(sphere.triangles.size(), 0);
+  options.frozen_faces[0] = options.frozen_faces[sphere.triangles.size() - 2] = 1;
+  const CornerSet triangle = corner_set(whole, 0);
+  REQUIRE(faces_of(simplify::simplify_in_envelope(sphere, options).soup).count(triangle) == 0);
+
+  options.frozen_merges = {{m, a}, {m, b}};
+  const simplify::SimplifyResult merged = simplify::simplify_in_envelope(sphere, options);
+  REQUIRE(faces_of(merged.soup).count(triangle) == 1);
+  REQUIRE(check::check_surface(merged.soup).watertight());
+
+  options.frozen_merges = {{m, static_cast<Index>(sphere.positions.size())}};
   REQUIRE_THROWS_AS(simplify::simplify_in_envelope(sphere, options), UsageError);
 }
 

@@ -1,5 +1,7 @@
 #include "fast_path.h"
 
+#include <mr/tetmesh/insertion.h>
+
 namespace mr::tools {
 
 tetmesh::TetrahedralizeOptions repair_defaults() {
@@ -23,6 +25,49 @@ tetmesh::PipelineOptions repair_pipeline_options(const tetmesh::TetrahedralizeOp
   options.keep_rejected = true;
   options.improve = false;
   return options;
+}
+
+namespace {
+
+tetmesh::PipelineOptions kept_input_options(const tetmesh::TetrahedralizeOptions& tetrahedralize,
+                                            int band_rings, std::size_t max_tets) {
+  tetmesh::PipelineOptions pipeline = repair_pipeline_options(tetrahedralize, RebuildMode::keep_input);
+  pipeline.tetrahedralize.defect_band_rings = band_rings;
+  pipeline.tetrahedralize.max_insertion_tets = max_tets;
+  return pipeline;
+}
+
+}  // namespace
+
+RepairTets tetrahedralize_for_repair(const TriangleSoup& input,
+                                     const tetmesh::TetrahedralizeOptions& tetrahedralize, RebuildMode mode,
+                                     const RepairTetsOptions& options) {
+  RepairTets tets;
+  if (mode == RebuildMode::keep_input) {
+    for (std::size_t i = 0; i < kKeepInputBands.size(); ++i) {
+      const bool last = i + 1 == kKeepInputBands.size();
+      const std::size_t budget = last && options.keep_or_nothing ? 0
+                                 : options.tet_budget > 0        ? options.tet_budget
+                                                          : keep_input_tet_budget(input.triangles.size());
+      try {
+        tets.pipeline = tetmesh::tetrahedralize(
+            input, kept_input_options(tetrahedralize, kKeepInputBands[i], budget), options.logger);
+        tets.mode = RebuildMode::keep_input;
+        tets.band_rings = kKeepInputBands[i];
+        return tets;
+      } catch (const tetmesh::InsertionTooCostly& e) {
+        tets.gave_way.push_back("band of " + std::to_string(kKeepInputBands[i]) + " rings: " + e.what());
+        if (options.on_give_way)
+          options.on_give_way(tets.gave_way.back(), last ? "rebuilding the surface instead"
+                                                         : "simplifying a band of " +
+                                                               std::to_string(kKeepInputBands[i + 1]) +
+                                                               " rings around defects instead");
+      }
+    }
+  }
+  tets.pipeline = tetmesh::tetrahedralize(input, repair_pipeline_options(tetrahedralize, RebuildMode::remesh),
+                                          options.logger);
+  return tets;
 }
 
 repair::RepairOptions surface_repair_options(const tetmesh::PipelineResult& pipeline, int threads,

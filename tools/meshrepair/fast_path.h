@@ -5,8 +5,12 @@
 #include <mr/repair/repair.h>
 #include <mr/tetmesh/tetrahedralize.h>
 
+#include <array>
 #include <cstddef>
+#include <functional>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace mr::tools {
 
@@ -38,6 +42,14 @@ inline constexpr std::size_t kKeepInputMaxFaces = 50'000;
 /// Generic_Twin (6.1M tets after 160 of its 19,670 triangles) are rebuilt.
 inline std::size_t keep_input_tet_budget(std::size_t faces) { return 64 * faces + 100'000; }
 
+/// Vertex rings around defects that keeping the input simplifies before
+/// insertion, narrowest first. The narrowest keeps every triangle that is not
+/// itself a defect; where its insertion grows past the tet budget (long
+/// unsimplified faces crossing near the defects, as on trimesh/chair_model
+/// and mode5), the wider band hands insertion simplified faces there and
+/// usually fits.
+inline constexpr std::array<int, 2> kKeepInputBands{0, 2};
+
 /// The mode for an input of `faces` faces: `requested` when set (--remesh,
 /// --keep-input), else keep_input up to kKeepInputMaxFaces.
 RebuildMode rebuild_mode(std::size_t faces, std::optional<RebuildMode> requested);
@@ -48,6 +60,33 @@ RebuildMode rebuild_mode(std::size_t faces, std::optional<RebuildMode> requested
 /// manifold fix, no quality improvement.
 tetmesh::PipelineOptions repair_pipeline_options(const tetmesh::TetrahedralizeOptions& tetrahedralize,
                                                  RebuildMode mode);
+
+/// How tetrahedralize_for_repair runs.
+struct RepairTetsOptions {
+  /// --keep-input: the widest band runs without a tet budget, and the input
+  /// is kept or the run fails; never rebuilt instead.
+  bool keep_or_nothing = false;
+  /// Tets a band's insertion may grow to (0: keep_input_tet_budget of the input).
+  std::size_t tet_budget = 0;
+  tetmesh::Logger logger;
+  /// Told, as it happens, why a band gave way and what comes next (may be empty).
+  std::function<void(const std::string& why, const std::string& next)> on_give_way;
+};
+
+/// The tets of meshrepair's rebuild and how they were reached.
+struct RepairTets {
+  tetmesh::PipelineResult pipeline;
+  RebuildMode mode = RebuildMode::remesh;  ///< remesh where keeping the input was given up
+  int band_rings = -1;                     ///< the defect band the input was kept with (-1: rebuilt)
+  std::vector<std::string> gave_way;       ///< why each band that gave way did, in order
+};
+
+/// The pipeline in `mode`. Keeping the input tries the bands of
+/// kKeepInputBands in turn, each within keep_input_tet_budget, and gives way
+/// to rebuilding (mode remesh) when none fits, unless keep_or_nothing.
+RepairTets tetrahedralize_for_repair(const TriangleSoup& input,
+                                     const tetmesh::TetrahedralizeOptions& tetrahedralize, RebuildMode mode,
+                                     const RepairTetsOptions& options);
 
 /// The surface repair's options for a pipeline's result (which must outlive
 /// them); the output grids are the caller's.

@@ -264,34 +264,14 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
   return true;
 }
 
-// The pipeline in `mode`; keeping the input gives way to rebuilding it
-// (mode becomes remesh) when its insertion grows past the tets it may
-// cost, unless --keep-input asked for it.
-tetmesh::PipelineResult tetrahedralize_for_repair(const ToolOptions& options, const TriangleSoup& input,
-                                                  RebuildMode& mode, std::string& abandoned,
-                                                  std::ostream& err) {
-  tetmesh::PipelineOptions pipeline = repair_pipeline_options(options.tetrahedralize, mode);
-  if (mode == RebuildMode::keep_input && !options.rebuild)
-    pipeline.tetrahedralize.max_insertion_tets = keep_input_tet_budget(input.triangles.size());
-  try {
-    return tetmesh::tetrahedralize(input, pipeline, make_logger(options, err));
-  } catch (const tetmesh::InsertionTooCostly& e) {
-    abandoned = e.what();
-    if (!options.quiet)
-      err << "meshrepair: keeping the input triangles would cost too much (" << e.what()
-          << "); rebuilding the surface instead\n";
-    mode = RebuildMode::remesh;
-    return tetmesh::tetrahedralize(input, repair_pipeline_options(options.tetrahedralize, mode),
-                                   make_logger(options, err));
-  }
-}
-
 // What run() read and decided before rebuilding the surface.
 struct RebuildInput {
   const TriangleSoup& input;
   double seconds_read = 0.0;
-  std::string declined;        ///< why the holes-only path declined
-  std::string keep_abandoned;  ///< why keeping the input was given up (empty: it was not)
+  std::string declined;                          ///< why the holes-only path declined
+  std::string keep_abandoned;                    ///< why keeping the input was given up (empty: it was not)
+  int keep_input_band_rings = -1;                ///< the defect band the input was kept with (-1: rebuilt)
+  std::vector<std::string> keep_input_gave_way;  ///< why each narrower band gave way
 };
 
 // Tets, surface repair, the written file and its figures, in `mode` (which
@@ -301,8 +281,19 @@ void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
                        const std::vector<std::string>& files, RebuildInput& in, RebuildMode& mode,
                        std::ostream& out, std::ostream& err) {
   const TriangleSoup& input = in.input;
-  const tetmesh::PipelineResult pipeline =
-      tetrahedralize_for_repair(options, input, mode, in.keep_abandoned, err);
+  RepairTetsOptions tets_options;
+  tets_options.keep_or_nothing = options.rebuild == RebuildMode::keep_input;
+  tets_options.logger = make_logger(options, err);
+  if (!options.quiet)
+    tets_options.on_give_way = [&err](const std::string& why, const std::string& next) {
+      err << "meshrepair: keeping the input triangles would cost too much (" << why << "); " << next << "\n";
+    };
+  const RepairTets tets = tetrahedralize_for_repair(input, options.tetrahedralize, mode, tets_options);
+  const tetmesh::PipelineResult& pipeline = tets.pipeline;
+  if (mode != tets.mode) in.keep_abandoned = tets.gave_way.back();
+  mode = tets.mode;
+  in.keep_input_band_rings = tets.band_rings;
+  in.keep_input_gave_way = tets.gave_way;
   repair::RepairOptions repair_options =
       surface_repair_options(pipeline, options.tetrahedralize.threads, options.cleanup, mode);
   io::WriteOptions write_options = options.write;
@@ -329,7 +320,8 @@ void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
   if (!options.stats_path.empty())
     cli::write_stats_file(options.stats_path,
                           make_repair_stats({input, pipeline, repaired, written, provenance.summary,
-                                             in.seconds_read, seconds_write, in.declined, in.keep_abandoned})
+                                             in.seconds_read, seconds_write, in.declined, in.keep_abandoned,
+                                             in.keep_input_band_rings, in.keep_input_gave_way})
                               .dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << repaired.surface.triangles.size()
@@ -346,7 +338,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   const auto start = std::chrono::steady_clock::now();
   check_file_fits(files[0], options.max_memory);
   const TriangleSoup input = io::read_surface(registry, files[0]);
-  RebuildInput rebuild{input, seconds_since(start), {}, {}};
+  RebuildInput rebuild{input, seconds_since(start), {}, {}, -1, {}};
   check_faces_fit(files[0], input.num_triangles(), kPipelineBytesPerFace, options.max_memory);
   check_has_area(files[0], input);
   check_output_precision(registry, files[1], input, options);

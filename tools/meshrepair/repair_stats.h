@@ -14,6 +14,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <string>
+#include <vector>
+
 namespace mr::tools {
 
 struct RepairRun {
@@ -26,6 +29,8 @@ struct RepairRun {
   double seconds_write = 0.0;
   std::string hole_fill_declined;    ///< why the holes-only path was not taken
   std::string keep_input_abandoned;  ///< why keeping the input was given up for a rebuild (empty: it was not)
+  int keep_input_band_rings = -1;    ///< the defect band the input was kept with (-1: rebuilt)
+  std::vector<std::string> keep_input_gave_way;  ///< why each band that gave way did
 };
 
 nlohmann::json make_repair_stats(const RepairRun& run);

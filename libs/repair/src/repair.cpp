@@ -93,13 +93,20 @@ TriangleSoup clean_up_reference(const TriangleSoup& peeled, const TriangleSoup& 
   return reference;
 }
 
-TriangleSoup clean_up(const TriangleSoup& peeled, std::vector<std::uint8_t> frozen, const TriangleSoup& input,
+// What the clean-up must keep of the input triangles put back.
+struct KeptTriangles {
+  std::vector<std::uint8_t> frozen;              ///< per face of the surface: made from an input triangle
+  std::vector<std::array<Index, 2>> fan_merges;  ///< see detail::UnbrokenTriangles
+};
+
+TriangleSoup clean_up(const TriangleSoup& peeled, KeptTriangles kept, const TriangleSoup& input,
                       bool input_closed, const envelope::Envelope& envelope, const RepairOptions& options,
                       RepairResult& result) {
   simplify::SimplifyOptions simplify_options;
   simplify_options.epsilon_abs = options.epsilon;
   simplify_options.threads = options.threads;
-  simplify_options.frozen_faces = std::move(frozen);
+  simplify_options.frozen_faces = std::move(kept.frozen);
+  simplify_options.frozen_merges = std::move(kept.fan_merges);
   simplify::SimplifyResult simplified = simplify::simplify_in_envelope_of(
       peeled, clean_up_reference(peeled, input, input_closed, envelope), simplify_options);
   result.collapses = simplified.collapses;
@@ -118,17 +125,20 @@ double on_input_tolerance(const TriangleSoup& surface, double epsilon) {
 
 // The input triangles the peeled faces tile put back; flags the faces made
 // from them, which the clean-up must keep.
-std::vector<std::uint8_t> keep_input_triangles(const TriangleSoup& input, const RepairOptions& options,
-                                               RepairResult& result) {
+KeptTriangles keep_input_triangles(const TriangleSoup& input, const RepairOptions& options,
+                                   RepairResult& result) {
   const TriangleSoup& inserted = options.inserted_input ? *options.inserted_input : input;
   detail::UnbrokenTriangles kept =
       detail::put_back_unbroken_triangles(result.surface, inserted, input, options.inserted_snap_spacing,
                                           on_input_tolerance(result.surface, options.epsilon));
   result.surface = std::move(kept.surface);
   result.input_triangles_put_back = kept.put_back;
-  std::vector<std::uint8_t> frozen(kept.origins.size());
-  for (std::size_t f = 0; f < frozen.size(); ++f) frozen[f] = kept.origins[f] != detail::FaceOrigin::peeled;
-  return frozen;
+  KeptTriangles out;
+  out.frozen.resize(kept.origins.size());
+  for (std::size_t f = 0; f < out.frozen.size(); ++f)
+    out.frozen[f] = kept.origins[f] != detail::FaceOrigin::peeled;
+  out.fan_merges = std::move(kept.fan_merges);
+  return out;
 }
 
 // The manifold fix edits a copy of the tets; the copy is dropped once its
@@ -152,6 +162,49 @@ void peel_manifold_boundary(const TetMesh& mesh, std::span<const std::uint8_t> i
   result.peeled_faces = result.surface.triangles.size();
 }
 
+void round_to_output_grid(const RepairOptions& options, RepairResult& result) {
+  StageClock clock(result, "round");
+  const Eigen::AlignedBox3d box = bounding_box(result.surface);
+  FinerGrid finer;
+  if (options.finer_output_grid)
+    finer = [&](const CoordinateGrid& refused) {
+      return options.finer_output_grid(box.min(), box.max(), refused);
+    };
+  GridRounding rounded = round_to_grid_or_finer(result.surface, options.output_grid(box.min(), box.max()),
+                                                finer, options.rounding);
+  result.grid = rounded.grid;
+  result.rounding = rounded.stats;
+  result.finer_grids = rounded.finer_grids;
+}
+
+// The clean-up, then the rounding to the output grid. A fan merged back
+// into its triangle stretches the rebuilt faces beside it to the
+// triangle's corners, which can leave the rounding no room there
+// (thingi10k/908460 jittered: 3 vertices found no float32 place); the
+// clean-up then runs again from the peeled surface with the fans kept.
+void clean_up_and_round(const TriangleSoup& input, bool input_closed, const envelope::Envelope& envelope,
+                        KeptTriangles kept, const RepairOptions& options, RepairResult& result) {
+  const bool merges = !kept.fan_merges.empty() && options.output_grid;
+  const TriangleSoup peeled = merges ? result.surface : TriangleSoup{};
+  const auto clean = [&](KeptTriangles faces) {
+    StageClock clock(result, "cleanup");
+    result.surface =
+        clean_up(result.surface, std::move(faces), input, input_closed, envelope, options, result);
+  };
+  clean(merges ? kept : std::move(kept));
+  if (!options.output_grid) return;
+  try {
+    round_to_output_grid(options, result);
+  } catch (const RunError&) {
+    if (!merges) throw;
+    result.surface = peeled;
+    result.fan_merges_undone = true;
+    kept.fan_merges.clear();
+    clean(std::move(kept));
+    round_to_output_grid(options, result);
+  }
+}
+
 }  // namespace
 
 RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::uint8_t> inside,
@@ -166,30 +219,15 @@ RepairResult repair_surface_from_tets(const TetMesh& mesh, std::span<const std::
     envelope = envelope::make_envelope(input, envelope_options);
   }
   peel_manifold_boundary(mesh, inside, envelope.get(), input_closed, options, result);
-  std::vector<std::uint8_t> frozen;
+  KeptTriangles kept;
   if (options.keep_input_triangles && !input.triangles.empty()) {
     StageClock clock(result, "keep");
-    frozen = keep_input_triangles(input, options, result);
+    kept = keep_input_triangles(input, options, result);
   }
-  if (options.cleanup && !input.triangles.empty()) {
-    StageClock clock(result, "cleanup");
-    result.surface =
-        clean_up(result.surface, std::move(frozen), input, input_closed, *envelope, options, result);
-  }
-  if (options.output_grid) {
-    StageClock clock(result, "round");
-    const Eigen::AlignedBox3d box = bounding_box(result.surface);
-    FinerGrid finer;
-    if (options.finer_output_grid)
-      finer = [&](const CoordinateGrid& refused) {
-        return options.finer_output_grid(box.min(), box.max(), refused);
-      };
-    GridRounding rounded = round_to_grid_or_finer(result.surface, options.output_grid(box.min(), box.max()),
-                                                  finer, options.rounding);
-    result.grid = rounded.grid;
-    result.rounding = rounded.stats;
-    result.finer_grids = rounded.finer_grids;
-  }
+  if (options.cleanup && !input.triangles.empty())
+    clean_up_and_round(input, input_closed, *envelope, std::move(kept), options, result);
+  else if (options.output_grid)
+    round_to_output_grid(options, result);
   if (!detail::find_boundary_defects(result.surface.triangles).closed_manifold())
     throw RunError("repair: internal error: the repaired surface is not a closed manifold");
   return result;

@@ -284,12 +284,16 @@ class Assembly {
   void emit(const Tiling& tiling, const std::vector<std::uint8_t>& needed, UnbrokenTriangles& out) const {
     std::vector<Index> polygon;
     std::array<int, 3> points_on_side{};
+    const auto corner_vertex = [&](std::size_t c) { return tiling.rim[tiling.corner[c % 3]]; };
     for (std::size_t i = 0, side = 0; i < tiling.rim.size(); ++i) {
       if (side < 2 && i == tiling.corner[side + 1]) ++side;
       const bool corner = i == tiling.corner[side];
       if (!corner && !needed[tiling.rim[i]]) continue;
       polygon.push_back(tiling.rim[i]);
-      points_on_side[side] += corner ? 0 : 1;
+      if (corner) continue;
+      ++points_on_side[side];
+      out.fan_merges.push_back({tiling.rim[i], corner_vertex(side)});
+      out.fan_merges.push_back({tiling.rim[i], corner_vertex(side + 1)});
     }
     auto& triangles = out.surface.triangles;
     if (polygon.size() == 3) {
@@ -312,6 +316,7 @@ class Assembly {
     const Vec3d& b = peeled_.positions[tiling.rim[tiling.corner[1]]];
     const Vec3d& c = peeled_.positions[tiling.rim[tiling.corner[2]]];
     out.surface.positions.push_back((a + b + c) / 3.0);
+    for (std::size_t k = 0; k < 3; ++k) out.fan_merges.push_back({centroid, corner_vertex(k)});
     for (std::size_t i = 0; i < polygon.size(); ++i)
       triangles.push_back({centroid, polygon[i], polygon[(i + 1) % polygon.size()]});
   }
@@ -346,7 +351,10 @@ std::vector<Index> conflicting_faces(const TriangleSoup& surface, const Assembly
   return faces;
 }
 
-void drop_unused_vertices(TriangleSoup& surface) {
+// Drops the vertices no face uses, renumbering the fan merges' vertices
+// (all used: the fans' own).
+void drop_unused_vertices(UnbrokenTriangles& out) {
+  TriangleSoup& surface = out.surface;
   std::vector<Index> new_index(surface.positions.size(), kNone);
   std::vector<Vec3d> positions;
   for (Triangle& t : surface.triangles)
@@ -358,6 +366,8 @@ void drop_unused_vertices(TriangleSoup& surface) {
       v = new_index[v];
     }
   surface.positions = std::move(positions);
+  for (std::array<Index, 2>& merge : out.fan_merges)
+    for (Index& v : merge) v = new_index[v];
 }
 
 }  // namespace
@@ -385,7 +395,7 @@ UnbrokenTriangles put_back_unbroken_triangles(const TriangleSoup& peeled, const 
     }
     out = assembly.build(changes);
   }
-  drop_unused_vertices(out.surface);
+  drop_unused_vertices(out);
   return out;
 }
 

@@ -12,6 +12,7 @@
 
 #include <mr/core/triangle_soup.h>
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +28,13 @@ struct UnbrokenTriangles {
   TriangleSoup surface;             ///< only the vertices its faces use
   std::vector<FaceOrigin> origins;  ///< one per face of `surface`
   std::size_t put_back = 0;         ///< input triangles put back (whole or fanned)
+  /// (point, corner) pairs of vertices of `surface`: each point a fanned
+  /// triangle passes through (on its edges, or its centroid) with a corner
+  /// of that triangle it may merge into while every face of the fan stays
+  /// on the triangle (the corners of the edge it lies on; any corner for
+  /// the centroid). The clean-up merges them where the neighbours allow,
+  /// which turns the fan back into the triangle.
+  std::vector<std::array<Index, 2>> fan_merges;
 };
 
 /// `peeled` is a closed, manifold, outward surface without self-

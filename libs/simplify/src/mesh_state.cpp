@@ -7,10 +7,11 @@
 namespace mr::simplify {
 
 MeshState::MeshState(const TriangleSoup& input, const TriangleSoup& welded,
-                     const DerivedTolerances& tolerances, std::span<const std::uint8_t> frozen_faces)
+                     const DerivedTolerances& tolerances, std::span<const std::uint8_t> frozen_faces,
+                     std::span<const std::array<Index, 2>> frozen_merges)
     : tolerances_(tolerances) {
   build_mesh(welded);
-  lock_vertices(welded, frozen_faces);
+  lock_vertices(welded, frozen_faces, frozen_merges);
   envelope::EnvelopeOptions envelope_options;
   envelope_options.epsilon = tolerances_.epsilon;
   envelope_ = envelope::make_envelope(input, envelope_options);
@@ -115,16 +116,33 @@ Corners MeshState::corners(TriMesh::FaceHandle f) const {
 
 // Vertices of kept-aside faces stay where they are so those faces stay
 // attached; so do vertices whose faces do not form one fan, and those of
-// frozen faces.
-void MeshState::lock_vertices(const TriangleSoup& welded, std::span<const std::uint8_t> frozen_faces) {
+// frozen faces, but for the merges asked for vertices that only frozen
+// faces lock.
+void MeshState::lock_vertices(const TriangleSoup& welded, std::span<const std::uint8_t> frozen_faces,
+                              std::span<const std::array<Index, 2>> frozen_merges) {
   locked_.assign(mesh_.n_vertices(), 0);
-  for (std::size_t f = 0; f < frozen_faces.size(); ++f)
-    if (frozen_faces[f])
-      for (Index v : welded.triangles[f]) locked_[v] = 1;
   for (const Triangle& t : kept_aside_triangles_)
     for (Index v : t) locked_[v] = 1;
   for (auto v : mesh_.vertices())
     if (!mesh_.is_manifold(v)) locked_[v.idx()] = 1;
+  for (const std::array<Index, 2>& merge : frozen_merges)
+    if (!locked_[merge[0]] && merge[0] != merge[1]) merges_.push_back(merge);
+  std::sort(merges_.begin(), merges_.end());
+  merges_.erase(std::unique(merges_.begin(), merges_.end()), merges_.end());
+  for (std::size_t f = 0; f < frozen_faces.size(); ++f)
+    if (frozen_faces[f])
+      for (Index v : welded.triangles[f]) locked_[v] = 1;
+}
+
+bool MeshState::has_merges(TriMesh::VertexHandle v0) const {
+  const auto v = static_cast<Index>(v0.idx());
+  const auto it = std::lower_bound(merges_.begin(), merges_.end(), std::array<Index, 2>{v, 0});
+  return it != merges_.end() && (*it)[0] == v;
+}
+
+bool MeshState::may_merge(TriMesh::VertexHandle v0, TriMesh::VertexHandle v1) const {
+  return std::binary_search(merges_.begin(), merges_.end(),
+                            std::array<Index, 2>{static_cast<Index>(v0.idx()), static_cast<Index>(v1.idx())});
 }
 
 // Boundary edges of the manifold part, as degenerate triangles (a, b, a): the
@@ -210,12 +228,13 @@ bool MeshState::same_copies_around(TriMesh::VertexHandle v) const {
 }
 
 bool MeshState::may_collapse_from(TriMesh::VertexHandle v0) const {
-  return !locked_[v0.idx()] && same_copies_around(v0);
+  return (!locked_[v0.idx()] || has_merges(v0)) && same_copies_around(v0);
 }
 
 bool MeshState::halfedge_may_collapse(TriMesh::HalfedgeHandle h) const {
   if (mesh_.status(mesh_.edge_handle(h)).deleted()) return false;
   const auto v0 = mesh_.from_vertex_handle(h);
+  if (locked_[v0.idx()] && !may_merge(v0, mesh_.to_vertex_handle(h))) return false;
   return !mesh_.is_boundary(v0) || mesh_.is_boundary(mesh_.edge_handle(h));
 }
 

@@ -39,9 +39,12 @@ class MeshState {
   /// `welded` has bit-identical vertices merged; `input` is the original soup
   /// whose envelope bounds every changed triangle.
   /// Vertices of the faces flagged in `frozen_faces` (empty, or one flag per
-  /// face of `welded`) never move: those faces come out as they went in.
+  /// face of `welded`) never move: those faces come out as they went in,
+  /// except that a vertex of `frozen_merges` (vertex, into) pairs of `welded`
+  /// may collapse into `into` (SimplifyOptions::frozen_merges).
   MeshState(const TriangleSoup& input, const TriangleSoup& welded, const DerivedTolerances& tolerances,
-            std::span<const std::uint8_t> frozen_faces = {});
+            std::span<const std::uint8_t> frozen_faces = {},
+            std::span<const std::array<Index, 2>> frozen_merges = {});
 
   TriMesh& mesh() { return mesh_; }
   Vec3d point(TriMesh::VertexHandle v) const;
@@ -113,7 +116,10 @@ class MeshState {
 
   Corners corners(TriMesh::FaceHandle f) const;
   void build_mesh(const TriangleSoup& welded);
-  void lock_vertices(const TriangleSoup& welded, std::span<const std::uint8_t> frozen_faces);
+  void lock_vertices(const TriangleSoup& welded, std::span<const std::uint8_t> frozen_faces,
+                     std::span<const std::array<Index, 2>> frozen_merges);
+  bool may_merge(TriMesh::VertexHandle v0, TriMesh::VertexHandle v1) const;
+  bool has_merges(TriMesh::VertexHandle v0) const;
   bool same_copies_around(TriMesh::VertexHandle v) const;
   void build_boundary_envelope();
   void build_grid();
@@ -168,6 +174,8 @@ class MeshState {
   std::vector<Copies> copies_;                  // per mesh face
   std::size_t duplicate_faces_ = 0;             // input faces that share a mesh face with an earlier one
   std::vector<std::uint8_t> locked_;            // per vertex: never moved or flipped around
+  std::vector<std::array<Index, 2>>
+      merges_;  // sorted: collapses allowed from a vertex locked by frozen faces only
   std::unique_ptr<envelope::Envelope> envelope_;
   std::unique_ptr<envelope::Envelope> fine_envelope_;      // stage 2: asked only where envelope_ refuses
   std::unique_ptr<envelope::Envelope> boundary_envelope_;  // null when the input has no boundary

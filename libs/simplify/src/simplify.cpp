@@ -10,6 +10,8 @@
 
 #include <tbb/task_arena.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -49,9 +51,13 @@ SimplifyResult run(const TriangleSoup& surface, const TriangleSoup& reference, c
   result.faces_before = surface.triangles.size();
   result.epsilon = tolerances.epsilon;
   auto start = std::chrono::steady_clock::now();
-  TriangleSoup welded = weld_identical_vertices(surface);
+  std::vector<Index> welded_index;
+  TriangleSoup welded = weld_identical_vertices(surface, welded_index);
   result.reoriented_faces = orient_coherently(welded).flipped;
-  MeshState state(reference, welded, tolerances, options.frozen_faces);
+  std::vector<std::array<Index, 2>> merges;
+  for (const std::array<Index, 2>& merge : options.frozen_merges)
+    merges.push_back({welded_index[merge[0]], welded_index[merge[1]]});
+  MeshState state(reference, welded, tolerances, options.frozen_faces, merges);
   result.kept_aside_faces = state.kept_aside_faces();
   result.duplicate_faces = state.duplicate_faces();
   result.locked_vertices = state.locked_vertices();
@@ -85,6 +91,11 @@ SimplifyResult simplify_in_envelope_of(const TriangleSoup& surface, const Triang
   if (!options.frozen_faces.empty() && options.frozen_faces.size() != surface.triangles.size())
     throw UsageError("simplify: " + std::to_string(options.frozen_faces.size()) + " frozen-face flags for " +
                      std::to_string(surface.triangles.size()) + " faces");
+  for (const std::array<Index, 2>& merge : options.frozen_merges)
+    if (merge[0] >= surface.positions.size() || merge[1] >= surface.positions.size())
+      throw UsageError("simplify: a frozen merge names vertex " +
+                       std::to_string(std::max(merge[0], merge[1])) + " of " +
+                       std::to_string(surface.positions.size()));
   const DerivedTolerances tolerances = derive_tolerances(reference, options);
   if (surface.triangles.empty()) {
     SimplifyResult result;

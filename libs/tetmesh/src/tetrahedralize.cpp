@@ -39,10 +39,6 @@ constexpr double kSimplifyEpsilonFraction = 0.8;
 // Improvement samples the envelope this much finer (see improvement_envelope).
 constexpr double kImprovementSamplingRefinement = 8.0;
 
-// How far around a defect the input is simplified when only the band
-// around defects is (simplify_near_defects_only), in vertex rings.
-constexpr int kDefectRings = 2;
-
 TriangleSoup simplified_input(const TriangleSoup& input, const PipelineOptions& options,
                               const DerivedParameters& derived, PipelineStats& stats, const Logger& logger) {
   StageTimer timer(stats, "simplify", logger);
@@ -54,7 +50,8 @@ TriangleSoup simplified_input(const TriangleSoup& input, const PipelineOptions& 
   simplify_options.epsilon_abs = kSimplifyEpsilonFraction * derived.epsilon;
   simplify_options.threads = options.tetrahedralize.threads;
   if (options.tetrahedralize.simplify_near_defects_only) {
-    std::vector<std::uint8_t> near = detail::faces_near_defects(input, kDefectRings);
+    std::vector<std::uint8_t> near =
+        detail::faces_near_defects(input, options.tetrahedralize.defect_band_rings);
     timer.count("faces_near_defects", static_cast<std::size_t>(std::count(near.begin(), near.end(), 1)));
     if (std::find(near.begin(), near.end(), 1) == near.end()) {
       timer.stage().count("faces", static_cast<std::int64_t>(input.triangles.size()));

@@ -73,6 +73,10 @@ struct RepairResult {
   std::size_t peeled_faces = 0;  ///< faces of the boundary before the clean-up
   /// Input triangles put back in place of the faces tiling them (keep_input_triangles).
   std::size_t input_triangles_put_back = 0;
+  /// The fans of put-back triangles were kept as fans: merging them back
+  /// left the rounding to the output grid no room, so the clean-up ran again
+  /// without (see repair.cpp, clean_up_and_round).
+  bool fan_merges_undone = false;
   std::size_t collapses = 0;
   std::size_t flips = 0;
   /// The grid the surface's positions lie on (the writer must use it).

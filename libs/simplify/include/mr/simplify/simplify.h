@@ -21,6 +21,7 @@
 
 #include <mr/core/triangle_soup.h>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -48,6 +49,13 @@ struct SimplifyOptions {
   /// they went in (their vertices never move; meshrepair's unbroken input
   /// triangles). Collapses and flips change only the other faces.
   std::vector<std::uint8_t> frozen_faces;
+  /// Collapses allowed although their vertex is on a frozen face, as
+  /// (vertex, into) pairs of indices into the surface's positions: the
+  /// vertex may merge into `into`, and along no other edge. The caller
+  /// vouches that the frozen faces around it stay on what they stand for
+  /// (meshrepair: points a put-back triangle was fanned through merge into
+  /// its corners, which turns the fan back into the triangle).
+  std::vector<std::array<Index, 2>> frozen_merges;
 };
 
 struct SimplifyResult {

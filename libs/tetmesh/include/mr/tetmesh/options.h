@@ -45,11 +45,14 @@ struct TetrahedralizeOptions {
   static constexpr double kMaxSnapFraction = 0.01;
   /// Skip the input simplification stage.
   bool skip_simplify = false;
-  /// Simplify only the faces near defects (within two vertex rings of a
-  /// degenerate face, a face meeting another improperly, an edge of other
-  /// than two faces or of two disagreeing ones); the others are inserted as
-  /// they are, so that meshrepair can keep them.
+  /// Simplify only the faces near defects (within defect_band_rings vertex
+  /// rings of a degenerate face, a face meeting another improperly, an edge
+  /// of other than two faces or of two disagreeing ones); the others are
+  /// inserted as they are, so that meshrepair can keep them.
   bool simplify_near_defects_only = false;
+  /// The band simplify_near_defects_only simplifies, in vertex rings around
+  /// the defect faces (0: the defect faces only).
+  int defect_band_rings = 2;
   /// Insertion stops with InsertionTooCostly past this many tets (0: never).
   std::size_t max_insertion_tets = 0;
   /// Worker threads; 0 means all hardware threads.
