@@ -378,6 +378,18 @@ TEST_CASE("attributes follow each face from the input triangle it came from", "[
   REQUIRE(dressed.region_names.size() == 7);
   REQUIRE(dressed.region_names[6] == "filled");
 
+  // A face the clean-up stretched across the seam reads its source's side
+  // only: (1, 1) lies on the second triangle alone, and takes the first's
+  // values at its closest point, (0.5, 0.5), not the second's (1, 1).
+  TriangleSoup stretched;
+  stretched.positions = {{0, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  stretched.triangles = {{0, 1, 2}};
+  const TriangleSoup across = repair::with_input_attributes(stretched, input, std::vector<std::int64_t>{0},
+                                                            CoordinateGrid::doubles());
+  REQUIRE(across.uvs[across.triangles[0][0]] == Vec2f(0, 0));
+  REQUIRE(across.uvs[across.triangles[0][1]].isApprox(Vec2f(0.5f, 0.5f)));
+  REQUIRE(across.uvs[across.triangles[0][2]] == Vec2f(0, 1));
+
   // Without attributes or filled faces nothing is added.
   TriangleSoup plain = input;
   plain.uvs.clear(), plain.normals.clear(), plain.face_regions.clear(), plain.region_names.clear();

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <span>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -112,23 +113,50 @@ void assign_regions(const TriangleSoup& input, std::span<const std::int64_t> sou
                                                      : 0;
 }
 
+// Per input triangle, its chart: triangles joined through shared vertices
+// (as the input's indices say, not by position), over which the attributes
+// vary continuously. A seam or a part boundary separates charts.
+std::vector<std::uint32_t> attribute_charts(const TriangleSoup& input) {
+  std::vector<std::uint32_t> parent(input.positions.size());
+  for (std::uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
+  const auto root = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const Triangle& t : input.triangles)
+    for (int i = 1; i < 3; ++i) {
+      const std::uint32_t a = root(t[0]), b = root(t[i]);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  std::vector<std::uint32_t> chart(input.triangles.size());
+  for (std::size_t f = 0; f < chart.size(); ++f) chart[f] = root(input.triangles[f][0]);
+  return chart;
+}
+
 // The input triangle a corner takes its attributes from: its face's source
 // when the corner is one of the source's corners (a kept face: exact);
 // else, of the input triangles nearest to it (ties within a hair, as on an
-// edge between two), the one facing most like the corner's face, so that
-// on either side of a crease or a UV seam a face reads its own side.
-std::uint32_t anchor_triangle(const spatial::AabbTree& tree, const TriangleSoup& input, const Vec3d& p,
-                              const Vec3d& face_normal, std::int64_t source, const CoordinateGrid& grid,
-                              double hair) {
+// edge between two) and on the source's chart, the one facing most like
+// the corner's face, so that on either side of a crease or a UV seam a face
+// reads its own side; the source itself when no triangle of its chart is
+// that near. A face's three corners thus read one chart: a face that the
+// clean-up stretched across a seam (a decal's border strip merged with the
+// panel under it) would otherwise blend texture coordinates from both
+// sides into a streak across the atlas. Filled faces (no source) read
+// whatever is nearest.
+std::uint32_t anchor_triangle(const spatial::AabbTree& tree, const TriangleSoup& input,
+                              std::span<const std::uint32_t> chart, const Vec3d& p, const Vec3d& face_normal,
+                              std::int64_t source, const CoordinateGrid& grid, double hair) {
   if (source >= 0) {
     const std::array<Vec3d, 3> c = input.corners(static_cast<std::size_t>(source));
     for (const Vec3d& q : c)
       if (grid.nearest(q) == p) return static_cast<std::uint32_t>(source);
   }
   const spatial::ClosestHit nearest = tree.closest(p);
-  std::uint32_t best = nearest.triangle;
+  std::uint32_t best = source >= 0 ? static_cast<std::uint32_t>(source) : nearest.triangle;
   double best_alignment = -2.0;
   for (std::uint32_t t : tree.triangles_within(p, std::sqrt(nearest.squared_distance) + hair)) {
+    if (source >= 0 && chart[t] != chart[static_cast<std::size_t>(source)]) continue;
     const std::array<Vec3d, 3> c = input.corners(t);
     const Vec3d n = (c[1] - c[0]).cross(c[2] - c[0]);
     const double alignment = n.norm() > 0.0 ? n.normalized().dot(face_normal) : -1.0;
@@ -151,6 +179,7 @@ TriangleSoup with_input_attributes(const TriangleSoup& surface, const TriangleSo
     return out;
   }
   const spatial::AabbTree tree(input);
+  const std::vector<std::uint32_t> chart = attribute_charts(input);
   const double hair = 1e-9 * bounding_box_diagonal(input);
   std::vector<CornerValues> values(3 * surface.triangles.size());
   tbb::parallel_for(std::size_t(0), surface.triangles.size(), [&](std::size_t f) {
@@ -158,7 +187,7 @@ TriangleSoup with_input_attributes(const TriangleSoup& surface, const TriangleSo
     const Vec3d n = (c[1] - c[0]).cross(c[2] - c[0]);
     const Vec3d normal = n.norm() > 0.0 ? Vec3d(n.normalized()) : Vec3d::Zero();
     for (int i = 0; i < 3; ++i) {
-      const std::uint32_t from = anchor_triangle(tree, input, c[i], normal, source[f], grid, hair);
+      const std::uint32_t from = anchor_triangle(tree, input, chart, c[i], normal, source[f], grid, hair);
       values[3 * f + i] = values_at(input, surface.triangles[f][i], anchor_on(input, from, c[i], grid));
     }
   });
