@@ -268,15 +268,13 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
 struct RebuildInput {
   const TriangleSoup& input;
   double seconds_read = 0.0;
-  std::string declined;                          ///< why the holes-only path declined
-  std::string keep_abandoned;                    ///< why keeping the input was given up (empty: it was not)
-  int keep_input_band_rings = -1;                ///< the defect band the input was kept with (-1: rebuilt)
-  std::vector<std::string> keep_input_gave_way;  ///< why each narrower band gave way
+  std::string declined;  ///< why the holes-only path declined
+  KeepInputOutcome keep_input;
 };
 
 // Tets, surface repair, the written file and its figures, in `mode` (which
 // becomes remesh where keeping the input costs too much, the reason kept in
-// in.keep_abandoned).
+// in.keep_input.abandoned).
 void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
                        const std::vector<std::string>& files, RebuildInput& in, RebuildMode& mode,
                        std::ostream& out, std::ostream& err) {
@@ -290,10 +288,10 @@ void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
     };
   const RepairTets tets = tetrahedralize_for_repair(input, options.tetrahedralize, mode, tets_options);
   const tetmesh::PipelineResult& pipeline = tets.pipeline;
-  if (mode != tets.mode) in.keep_abandoned = tets.gave_way.back();
+  if (mode != tets.mode) in.keep_input.abandoned = tets.gave_way.back();
   mode = tets.mode;
-  in.keep_input_band_rings = tets.band_rings;
-  in.keep_input_gave_way = tets.gave_way;
+  in.keep_input.band_rings = tets.band_rings;
+  in.keep_input.gave_way = tets.gave_way;
   repair::RepairOptions repair_options =
       surface_repair_options(pipeline, options.tetrahedralize.threads, options.cleanup, mode);
   io::WriteOptions write_options = options.write;
@@ -320,8 +318,7 @@ void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
   if (!options.stats_path.empty())
     cli::write_stats_file(options.stats_path,
                           make_repair_stats({input, pipeline, repaired, written, provenance.summary,
-                                             in.seconds_read, seconds_write, in.declined, in.keep_abandoned,
-                                             in.keep_input_band_rings, in.keep_input_gave_way})
+                                             in.seconds_read, seconds_write, in.declined, in.keep_input})
                               .dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << repaired.surface.triangles.size()
@@ -338,7 +335,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   const auto start = std::chrono::steady_clock::now();
   check_file_fits(files[0], options.max_memory);
   const TriangleSoup input = io::read_surface(registry, files[0]);
-  RebuildInput rebuild{input, seconds_since(start), {}, {}, -1, {}};
+  RebuildInput rebuild{input, seconds_since(start), {}, {}};
   check_faces_fit(files[0], input.num_triangles(), kPipelineBytesPerFace, options.max_memory);
   check_has_area(files[0], input);
   check_output_precision(registry, files[1], input, options);
@@ -356,7 +353,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
     if (!options.quiet)
       err << "meshrepair: keeping the input failed (" << e.what() << "); rebuilding the surface instead\n";
     mode = RebuildMode::remesh;
-    rebuild.keep_abandoned = e.what();
+    rebuild.keep_input.abandoned = e.what();
     rebuild_and_write(options, registry, files, rebuild, mode, out, err);
   }
 }

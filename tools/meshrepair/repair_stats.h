@@ -19,6 +19,13 @@
 
 namespace mr::tools {
 
+/// How keeping the input went (all empty under --remesh).
+struct KeepInputOutcome {
+  std::string abandoned;              ///< why it was given up for a rebuild (empty: it was not)
+  int band_rings = -1;                ///< the defect band the input was kept with (-1: rebuilt)
+  std::vector<std::string> gave_way;  ///< why each band that gave way did
+};
+
 struct RepairRun {
   const TriangleSoup& input;
   const tetmesh::PipelineResult& pipeline;
@@ -27,10 +34,8 @@ struct RepairRun {
   const check::ProvenanceSummary& provenance;
   double seconds_read = 0.0;
   double seconds_write = 0.0;
-  std::string hole_fill_declined;    ///< why the holes-only path was not taken
-  std::string keep_input_abandoned;  ///< why keeping the input was given up for a rebuild (empty: it was not)
-  int keep_input_band_rings = -1;    ///< the defect band the input was kept with (-1: rebuilt)
-  std::vector<std::string> keep_input_gave_way;  ///< why each band that gave way did
+  std::string hole_fill_declined;  ///< why the holes-only path was not taken
+  KeepInputOutcome keep_input;
 };
 
 nlohmann::json make_repair_stats(const RepairRun& run);

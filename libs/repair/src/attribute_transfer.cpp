@@ -1,6 +1,7 @@
 #include <mr/repair/attribute_transfer.h>
 
 #include <mr/core/errors.h>
+#include <mr/core/union_find.h>
 #include <mr/spatial/aabb_tree.h>
 #include <mr/spatial/triangle_distance.h>
 
@@ -117,19 +118,11 @@ void assign_regions(const TriangleSoup& input, std::span<const std::int64_t> sou
 // (as the input's indices say, not by position), over which the attributes
 // vary continuously. A seam or a part boundary separates charts.
 std::vector<std::uint32_t> attribute_charts(const TriangleSoup& input) {
-  std::vector<std::uint32_t> parent(input.positions.size());
-  for (std::uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
-  const auto root = [&](std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (const Triangle& t : input.triangles)
-    for (int i = 1; i < 3; ++i) {
-      const std::uint32_t a = root(t[0]), b = root(t[i]);
-      if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
+  UnionFind vertices(input.positions.size());
+  for (const Triangle& t : input.triangles) vertices.unite(t[0], t[1]), vertices.unite(t[0], t[2]);
   std::vector<std::uint32_t> chart(input.triangles.size());
-  for (std::size_t f = 0; f < chart.size(); ++f) chart[f] = root(input.triangles[f][0]);
+  for (std::size_t f = 0; f < chart.size(); ++f)
+    chart[f] = static_cast<std::uint32_t>(vertices.find(input.triangles[f][0]));
   return chart;
 }
 

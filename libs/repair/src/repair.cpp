@@ -184,23 +184,23 @@ void round_to_output_grid(const RepairOptions& options, RepairResult& result) {
 // clean-up then runs again from the peeled surface with the fans kept.
 void clean_up_and_round(const TriangleSoup& input, bool input_closed, const envelope::Envelope& envelope,
                         KeptTriangles kept, const RepairOptions& options, RepairResult& result) {
-  const bool merges = !kept.fan_merges.empty() && options.output_grid;
-  const TriangleSoup peeled = merges ? result.surface : TriangleSoup{};
+  const bool may_retry = !kept.fan_merges.empty() && options.output_grid;
+  const TriangleSoup peeled = may_retry ? result.surface : TriangleSoup{};
+  KeptTriangles without_merges{may_retry ? kept.frozen : std::vector<std::uint8_t>{}, {}};
   const auto clean = [&](KeptTriangles faces) {
     StageClock clock(result, "cleanup");
     result.surface =
         clean_up(result.surface, std::move(faces), input, input_closed, envelope, options, result);
   };
-  clean(merges ? kept : std::move(kept));
+  clean(std::move(kept));
   if (!options.output_grid) return;
   try {
     round_to_output_grid(options, result);
   } catch (const RunError&) {
-    if (!merges) throw;
+    if (!may_retry) throw;
     result.surface = peeled;
     result.fan_merges_undone = true;
-    kept.fan_merges.clear();
-    clean(std::move(kept));
+    clean(std::move(without_merges));
     round_to_output_grid(options, result);
   }
 }
