@@ -56,7 +56,8 @@ TriangleSoup rebuild_through_tets(const TriangleSoup& input, const RepairArgs& a
 
 TriangleSoup repair_soup(const TriangleSoup& input, const RepairArgs& args) {
   if (!args.remesh) {
-    tools::HolesOnlyRepair holes = tools::repair_holes_only(input, args.grid);
+    tools::HolesOnlyRepair holes =
+        tools::repair_holes_only(input, args.grid, tools::epsilon_for(input, args.tetrahedralize));
     if (holes.fill) return std::move(holes.fill->surface);
   }
   return rebuild_through_tets(input, args);
@@ -70,7 +71,8 @@ epsilon of the input wherever the input had surface (holes and gaps are
 filled). A watertight input comes back as it is, and one whose only defects
 are holes, repeated faces, flipped faces or zero-area faces keeps every other
 face (the flipped ones turned back) and gets faired patches, at any size
-(unless remesh=True); any other input goes through the tetrahedral fast path, which
+(unless remesh=True), as does one whose other defects are few and local
+enough to be cut out and filled within epsilon; any other input goes through the tetrahedral fast path, which
 keeps the input triangles away from defects on inputs of up to 50,000 faces
 and rebuilds larger ones, or every input with remesh=True.
 

@@ -57,6 +57,26 @@ def test_repair_of_holes_only_keeps_every_face(open_cube):
     assert signed_volume(vertices, faces) == pytest.approx(1.0, abs=1e-9)
 
 
+def test_repair_cuts_a_fold_out_and_keeps_every_face_away_from_it():
+    n = 8
+    vertices, faces = subdivided_cube(n)
+    # The middle vertex of the top side moved along it past its neighbour:
+    # its fan folds over the faces beyond.
+    middle = np.array([0.5, 0.5, 1.0])
+    v = np.flatnonzero(np.all(vertices == middle, axis=1))[0]
+    vertices[v, 0] += 1.6 / n
+    assert meshrepair.check(vertices, faces)["self_intersecting_pairs"] > 0
+    out_vertices, out_faces = meshrepair.repair(vertices, faces)
+    assert_watertight(out_vertices, out_faces)
+
+    def corner_sets(vs, fs):
+        return {tuple(sorted(map(tuple, vs[f]))) for f in fs}
+
+    far = np.linalg.norm(vertices[faces].mean(axis=1) - middle, axis=1) > 4.0 / n
+    assert far.sum() > 0.8 * len(faces)
+    assert corner_sets(vertices, faces[far]) <= corner_sets(out_vertices, out_faces)
+
+
 def test_repair_accepts_float32_and_strided_arrays(cube):
     vertices, faces = cube
     strided = np.asfortranarray(vertices.astype(np.float32))

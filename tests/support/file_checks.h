@@ -9,14 +9,32 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <set>
 #include <string>
 #include <vector>
 
 namespace mr::test {
+
+using PositionTriple = std::array<std::array<double, 3>, 3>;
+
+/// Each face of `soup` as its corners' positions, sorted: faces comparable
+/// across files and vertex orders.
+inline std::multiset<PositionTriple> position_triples(const TriangleSoup& soup) {
+  std::multiset<PositionTriple> out;
+  for (const Triangle& t : soup.triangles) {
+    PositionTriple c;
+    for (std::size_t i = 0; i < 3; ++i)
+      c[i] = {soup.positions[t[i]].x(), soup.positions[t[i]].y(), soup.positions[t[i]].z()};
+    std::sort(c.begin(), c.end());
+    out.insert(c);
+  }
+  return out;
+}
 
 inline std::vector<char> read_bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

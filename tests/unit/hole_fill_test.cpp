@@ -79,21 +79,6 @@ TriangleSoup cube_with_zero_area_face() {
   return soup;
 }
 
-using PositionTriple = std::array<std::array<double, 3>, 3>;
-
-// Each face as its corners' positions, sorted: comparable across files.
-std::multiset<PositionTriple> position_triples(const TriangleSoup& soup) {
-  std::multiset<PositionTriple> out;
-  for (const Triangle& t : soup.triangles) {
-    PositionTriple c;
-    for (int i = 0; i < 3; ++i)
-      c[i] = {soup.positions[t[i]].x(), soup.positions[t[i]].y(), soup.positions[t[i]].z()};
-    std::sort(c.begin(), c.end());
-    out.insert(c);
-  }
-  return out;
-}
-
 // meshrepair on `input` written as dir/in.stl, output dir/`out`: it must
 // succeed through the holes-only path. Its --stats.
 nlohmann::json repaired_by_holes_only(const TriangleSoup& input, const test::TempDir& dir,
@@ -122,16 +107,16 @@ TEST_CASE("a zero-area face goes by splitting the face across its longest edge, 
   require_watertight(removal.surface);
   // Every face but the zero-area one and face 8, (0, 4, 2), which is now
   // two faces meeting at m.
-  std::multiset<PositionTriple> expected = position_triples(input);
+  std::multiset<test::PositionTriple> expected = test::position_triples(input);
   TriangleSoup gone;
   gone.positions = input.positions;
   gone.triangles = {input.triangles[8], input.triangles[13]};
-  for (const PositionTriple& t : position_triples(gone)) expected.erase(expected.find(t));
+  for (const test::PositionTriple& t : test::position_triples(gone)) expected.erase(expected.find(t));
   TriangleSoup halves;
   halves.positions = input.positions;
   halves.triangles = {{2, 8, 4}, {8, 0, 4}};
-  for (const PositionTriple& t : position_triples(halves)) expected.insert(t);
-  REQUIRE(position_triples(removal.surface) == expected);
+  for (const test::PositionTriple& t : test::position_triples(halves)) expected.insert(t);
+  REQUIRE(test::position_triples(removal.surface) == expected);
 }
 
 TEST_CASE("copies of a face are dropped whichever way they face, the first kept", "[hole_fill]") {
@@ -288,6 +273,24 @@ TEST_CASE("holes above the size limits are left open and counted", "[hole_fill]"
   REQUIRE(result.surface.triangles.size() == input.triangles.size());
 }
 
+TEST_CASE("told to stop at the first hole left open, a fill reports no hole after it", "[hole_fill]") {
+  // The cube without its top and its bottom: two holes of four edges.
+  const TriangleSoup input =
+      without_faces(test::cube_soup(), [](const Vec3d& c) { return c.z() == 1.0 || c.z() == 0.0; });
+  hole_fill::HoleFillOptions options;
+  options.max_boundary = 3;
+  REQUIRE(hole_fill::fill_holes(input, options).holes.size() == 2);
+  options.stop_at_first_failure = true;
+  const hole_fill::HoleFillResult stopped = hole_fill::fill_holes(input, options);
+  REQUIRE(stopped.holes.size() == 1);
+  REQUIRE(stopped.holes[0].outcome == HoleOutcome::too_long);
+  // Holes that can be filled are all filled, as without the option.
+  options.max_boundary = 0;
+  const hole_fill::HoleFillResult filled = hole_fill::fill_holes(input, options);
+  REQUIRE(filled.filled() == 2);
+  require_watertight(filled.surface);
+}
+
 TEST_CASE("hole-fill writes the filled surface, checked as written, and its stats", "[hole_fill][e2e]") {
   const test::TempDir dir("hole_fill_tool");
   const io::Registry registry = io::make_default_registry();
@@ -369,8 +372,8 @@ TEST_CASE("meshrepair takes zero-area faces out of an input that lacks nothing e
   REQUIRE(stats["zero_area_faces"]["split_faces"] == 1);
   REQUIRE(stats["holes"]["kept_input_faces"] == 12);
   REQUIRE(stats["written_file"]["watertight"] == true);
-  REQUIRE(position_triples(io::read_surface(registry, dir / "out.glb")) ==
-          position_triples(hole_fill::remove_zero_area_faces(input).surface));
+  REQUIRE(test::position_triples(io::read_surface(registry, dir / "out.glb")) ==
+          test::position_triples(hole_fill::remove_zero_area_faces(input).surface));
 }
 
 TEST_CASE("meshrepair drops repeated faces and turns flipped ones of an input that lacks nothing else",
@@ -401,7 +404,8 @@ TEST_CASE("meshrepair drops repeated faces and turns flipped ones of an input th
   // The sphere's faces as the STL input holds them (the copies come last).
   TriangleSoup expected = io::read_surface(registry, dir / "in.stl");
   expected.triangles.resize(sphere.triangles.size());
-  REQUIRE(position_triples(io::read_surface(registry, dir / "out.obj")) == position_triples(expected));
+  REQUIRE(test::position_triples(io::read_surface(registry, dir / "out.obj")) ==
+          test::position_triples(expected));
 }
 
 TEST_CASE("a watertight result is written on a finer Draco grid when the chosen one leaves no room",

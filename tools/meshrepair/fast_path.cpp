@@ -10,6 +10,11 @@ tetmesh::TetrahedralizeOptions repair_defaults() {
   return options;
 }
 
+double epsilon_for(const TriangleSoup& input, const tetmesh::TetrahedralizeOptions& tetrahedralize) {
+  return tetrahedralize.epsilon_abs > 0.0 ? tetrahedralize.epsilon_abs
+                                          : tetrahedralize.epsilon_rel * bounding_box_diagonal(input);
+}
+
 RebuildMode rebuild_mode(std::size_t faces, std::optional<RebuildMode> requested) {
   if (requested) return *requested;
   return faces <= kKeepInputMaxFaces ? RebuildMode::keep_input : RebuildMode::remesh;

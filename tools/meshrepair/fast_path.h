@@ -19,6 +19,9 @@ namespace mr::tools {
 /// triangle cross many more tets (docs/ARCHITECTURE.md, "Repair").
 tetmesh::TetrahedralizeOptions repair_defaults();
 
+/// The envelope radius the pipeline uses for `input`.
+double epsilon_for(const TriangleSoup& input, const tetmesh::TetrahedralizeOptions& tetrahedralize);
+
 /// How much of the input the rebuild keeps.
 enum class RebuildMode {
   /// Input triangles away from defects come out as they went in: only the

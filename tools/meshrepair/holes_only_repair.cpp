@@ -10,7 +10,34 @@
 
 namespace mr::tools {
 
-HolesOnlyRepair repair_holes_only(const TriangleSoup& input, const CoordinateGrid& grid) {
+namespace {
+
+// Turns every face, patches included, of a surface whose faces all point inward.
+void turn_outward(TriangleSoup& surface, double volume) {
+  if (volume < 0)
+    for (Triangle& t : surface.triangles) std::swap(t[1], t[2]);
+}
+
+// The defects of `cleaned` cut out and the holes filled, into r.fill when
+// accepted.
+void cut_out(HolesOnlyRepair& r, const TriangleSoup& cleaned, const CoordinateGrid& grid, double epsilon) {
+  DefectCutOptions options;
+  options.epsilon = epsilon;
+  options.grid = grid;
+  r.cut = cut_out_defects(cleaned, options);
+  if (!r.cut.fill) {
+    r.declined += "; cutting them out: " + r.cut.declined;
+    return;
+  }
+  r.declined.clear();
+  r.fill = std::move(r.cut.fill);
+  r.cut.fill.reset();
+  turn_outward(r.fill->surface, check::check_surface(r.fill->surface, {.self_intersections = false}).volume);
+}
+
+}  // namespace
+
+HolesOnlyRepair repair_holes_only(const TriangleSoup& input, const CoordinateGrid& grid, double epsilon) {
   HolesOnlyRepair r;
   TriangleSoup welded = weld_identical_vertices(input);
   r.repeated_faces = hole_fill::remove_repeated_faces(welded);
@@ -23,9 +50,13 @@ HolesOnlyRepair repair_holes_only(const TriangleSoup& input, const CoordinateGri
     return r;
   }
   r.declined = hole_fill::defects_other_than_holes(cleaned.surface);
-  if (!r.declined.empty()) return r;
+  if (!r.declined.empty()) {
+    cut_out(r, cleaned.surface, grid, epsilon);
+    return r;
+  }
   hole_fill::HoleFillOptions options;
   options.grid = grid;
+  options.stop_at_first_failure = true;  // a hole left open declines the path
   hole_fill::HoleFillResult fill = hole_fill::fill_holes(cleaned.surface, options);
   if (fill.filled() < fill.holes.size()) {
     r.declined = "a hole could not be filled";
@@ -41,8 +72,7 @@ HolesOnlyRepair repair_holes_only(const TriangleSoup& input, const CoordinateGri
     r.declined = "the filled surface is not watertight: " + check::watertight_failures(report);
     return r;
   }
-  if (report.volume < 0)  // an inward input: turn every face, patches included
-    for (Triangle& t : fill.surface.triangles) std::swap(t[1], t[2]);
+  turn_outward(fill.surface, report.volume);
   r.fill = std::move(fill);
   return r;
 }

@@ -153,11 +153,6 @@ finer_output_grid(const io::Registry& registry, const std::string& path, const T
   };
 }
 
-// The envelope radius the pipeline would use for `input`.
-double epsilon_for(const TriangleSoup& input, const tetmesh::TetrahedralizeOptions& t) {
-  return t.epsilon_abs > 0.0 ? t.epsilon_abs : t.epsilon_rel * bounding_box_diagonal(input);
-}
-
 // Where each output face came from, measured on the surface as rounded for
 // writing: the written file carries the input's attributes by it, the
 // --provenance file lists it, --stats and the summary line sum it up.
@@ -220,16 +215,29 @@ std::string kept_faces_phrase(const HolesOnlyRepair& holes) {
     phrase += std::to_string(holes.zero_area_dropped) + " zero-area faces taken out, " +
               std::to_string(holes.split_faces) + " faces split where one lay on their edge, ";
   if (holes.flipped_faces != 0) phrase += std::to_string(holes.flipped_faces) + " faces turned, ";
+  if (holes.defects_cut())
+    phrase += std::to_string(holes.cut.cut_faces) + " faces cut out around " +
+              std::to_string(holes.cut.defect_faces) + " defect faces, ";
   return phrase + (phrase.empty() ? "every input face kept" : "every other input face kept");
 }
 
-// The holes-only path: its holes filled, the input written back with the
-// patches, checked as written. False (nothing written) when it declines.
+// What run() read and decided before rebuilding the surface.
+struct RebuildInput {
+  const TriangleSoup& input;
+  double seconds_read = 0.0;
+  std::string declined;             ///< why the holes-only path declined
+  double seconds_holes_only = 0.0;  ///< what finding that out cost
+  KeepInputOutcome keep_input;
+};
+
+// The holes-only path: its holes filled (its local defects cut out), the
+// input written back with the patches, checked as written. False (nothing
+// written, why in in.declined) when it declines.
 bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
-                    const std::vector<std::string>& files, const TriangleSoup& input, double seconds_read,
-                    std::string& declined, std::ostream& out) {
+                    const std::vector<std::string>& files, RebuildInput& in, std::ostream& out) {
+  const TriangleSoup& input = in.input;
   if (options.rebuild == RebuildMode::remesh) {
-    declined = "--remesh";
+    in.declined = "--remesh";
     return false;
   }
   auto start = std::chrono::steady_clock::now();
@@ -238,10 +246,11 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
   const double epsilon = epsilon_for(input, options.tetrahedralize);
   const CoordinateGrid grid =
       output_grid(registry, files[1], epsilon, options, write_options)(box.min(), box.max());
-  const HolesOnlyRepair holes = repair_holes_only(input, grid);
-  declined = holes.declined;
-  if (!holes.fill) return false;
+  const HolesOnlyRepair holes = repair_holes_only(input, grid, epsilon);
   const double seconds_fill = seconds_since(start);
+  in.declined = holes.declined;
+  in.seconds_holes_only = seconds_fill;
+  if (!holes.fill) return false;
   start = std::chrono::steady_clock::now();
   OutputProvenance provenance;
   const SurfaceWrite written =  // repair_holes_only checked it watertight
@@ -255,7 +264,7 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
   if (!options.stats_path.empty())
     cli::write_stats_file(options.stats_path,
                           make_holes_only_stats({input, holes, written, provenance.summary, epsilon,
-                                                 seconds_read, seconds_fill, seconds_write})
+                                                 in.seconds_read, seconds_fill, seconds_write})
                               .dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << holes.fill->surface.triangles.size()
@@ -263,14 +272,6 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
         << ")\n";
   return true;
 }
-
-// What run() read and decided before rebuilding the surface.
-struct RebuildInput {
-  const TriangleSoup& input;
-  double seconds_read = 0.0;
-  std::string declined;  ///< why the holes-only path declined
-  KeepInputOutcome keep_input;
-};
 
 // Tets, surface repair, the written file and its figures, in `mode` (which
 // becomes remesh where keeping the input costs too much, the reason kept in
@@ -316,10 +317,11 @@ void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
   const double seconds_write = seconds_since(start) - written.seconds;
   write_provenance(options, provenance);
   if (!options.stats_path.empty())
-    cli::write_stats_file(options.stats_path,
-                          make_repair_stats({input, pipeline, repaired, written, provenance.summary,
-                                             in.seconds_read, seconds_write, in.declined, in.keep_input})
-                              .dump(2));
+    cli::write_stats_file(
+        options.stats_path,
+        make_repair_stats({input, pipeline, repaired, written, provenance.summary, in.seconds_read,
+                           in.seconds_holes_only, seconds_write, in.declined, in.keep_input})
+            .dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << repaired.surface.triangles.size()
         << " faces, watertight ("
@@ -335,11 +337,11 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   const auto start = std::chrono::steady_clock::now();
   check_file_fits(files[0], options.max_memory);
   const TriangleSoup input = io::read_surface(registry, files[0]);
-  RebuildInput rebuild{input, seconds_since(start), {}, {}};
+  RebuildInput rebuild{input, seconds_since(start), {}, 0.0, {}};
   check_faces_fit(files[0], input.num_triangles(), kPipelineBytesPerFace, options.max_memory);
   check_has_area(files[0], input);
   check_output_precision(registry, files[1], input, options);
-  if (try_holes_only(options, registry, files, input, rebuild.seconds_read, rebuild.declined, out)) return;
+  if (try_holes_only(options, registry, files, rebuild, out)) return;
   if (options.verbose && !options.quiet)
     err << "meshrepair: rebuilding the surface (" << rebuild.declined << ")\n";
   RebuildMode mode = rebuild_mode(input.triangles.size(), options.rebuild);

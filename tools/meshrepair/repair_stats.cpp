@@ -94,6 +94,7 @@ nlohmann::json repair_figures(const repair::RepairResult& r) {
 nlohmann::json stage_seconds(const RepairRun& run) {
   nlohmann::json stages = nlohmann::json::array();
   stages.push_back({{"name", "read"}, {"seconds", run.seconds_read}});
+  stages.push_back({{"name", "hole_fill_tried"}, {"seconds", run.seconds_hole_fill_tried}});
   for (const tetmesh::StageStats& s : run.pipeline.stats.stages) {
     nlohmann::json stage = {{"name", s.name}, {"seconds", s.seconds}};
     for (const auto& [key, value] : s.counts) stage["counts"][key] = value;
@@ -147,7 +148,7 @@ nlohmann::json make_holes_only_stats(const HolesOnlyRun& run) {
     patch_faces += h.patch_faces, patch_vertices += h.patch_vertices;
   nlohmann::json stats = {
       {"memory", memory_figures(run.input)},
-      {"path", "hole_fill"},
+      {"path", run.holes.defects_cut() ? "cut_and_fill" : "hole_fill"},
       {"input", input_defects(run.input)},
       {"epsilon_abs", run.epsilon},
       {"bbox_diagonal", bounding_box_diagonal(run.input)},
@@ -155,6 +156,11 @@ nlohmann::json make_holes_only_stats(const HolesOnlyRun& run) {
       {"flipped_faces", run.holes.flipped_faces},
       {"zero_area_faces",
        {{"taken_out", run.holes.zero_area_dropped}, {"split_faces", run.holes.split_faces}}},
+      {"defects_cut",
+       {{"defect_faces", run.holes.cut.defect_faces},
+        {"cut_faces", run.holes.cut.cut_faces},
+        {"rings", run.holes.cut.rings},
+        {"declined", run.holes.cut.declined}}},
       {"holes",
        {{"found", fill.holes.size()},
         {"filled", fill.filled()},

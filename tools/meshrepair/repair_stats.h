@@ -33,6 +33,7 @@ struct RepairRun {
   const check::WrittenFileReport& written;
   const check::ProvenanceSummary& provenance;
   double seconds_read = 0.0;
+  double seconds_hole_fill_tried = 0.0;  ///< the holes-only path (and the cut), until it declined
   double seconds_write = 0.0;
   std::string hole_fill_declined;  ///< why the holes-only path was not taken
   KeepInputOutcome keep_input;

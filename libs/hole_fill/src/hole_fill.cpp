@@ -226,6 +226,23 @@ void prepare(HoleWork& w, const TriangleSoup& welded, const VertexFaces& around,
   w.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Holes prepared at once when a run may stop at its first open hole: a
+// few per thread.
+constexpr std::size_t kPrepareBatch = 16;
+
+// Prepares, in parallel, the holes to fill among work[from, from + count);
+// returns the end of that range.
+std::size_t prepare_batch(std::vector<HoleWork>& work, std::size_t from, std::size_t count,
+                          const TriangleSoup& welded, const VertexFaces& around,
+                          const HoleFillOptions& options) {
+  const std::size_t to = std::min(work.size(), from + count);
+  tbb::parallel_for(from, to, [&](std::size_t i) {
+    if (work[i].report.outcome == HoleOutcome::failed && !work[i].prepared)
+      prepare(work[i], welded, around, options);
+  });
+  return to;
+}
+
 }  // namespace
 
 HoleFillResult fill_holes(const TriangleSoup& input, const HoleFillOptions& options) {
@@ -242,13 +259,15 @@ HoleFillResult fill_holes(const TriangleSoup& input, const HoleFillOptions& opti
   std::vector<HoleWork> work;
   for (Hole& hole : detail::group_islands(welded, std::move(border.loops)))
     work.push_back(make_work(welded, std::move(hole), options));
-  tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
-    if (work[i].report.outcome == HoleOutcome::failed) prepare(work[i], welded, around, options);
-  });
+  // Prepared in parallel, all at once or, where the first hole left open
+  // ends the run, a batch at a time so the rest is not prepared in vain.
+  const std::size_t batch = options.stop_at_first_failure ? kPrepareBatch : work.size();
+  std::size_t prepared_to = 0;
   detail::FilledSurface surface(welded);
   // Accepted in order; a hole with islands that no patch fills is retried
   // as separate loops, appended to the work.
   for (std::size_t i = 0; i < work.size(); ++i) {
+    if (i == prepared_to) prepared_to = prepare_batch(work, i, batch, welded, around, options);
     if (work[i].report.outcome == HoleOutcome::failed) {
       if (!work[i].prepared) prepare(work[i], welded, around, options);
       fill_one(work[i], surface, options);
@@ -261,6 +280,7 @@ HoleFillResult fill_holes(const TriangleSoup& input, const HoleFillOptions& opti
       continue;
     }
     result.holes.push_back(work[i].report);
+    if (options.stop_at_first_failure && work[i].report.outcome != HoleOutcome::filled) break;
   }
   result.surface = std::move(surface).release();
   return result;

@@ -1,6 +1,5 @@
 #include <mr/tetmesh/tetrahedralize.h>
 
-#include "defect_faces.h"
 #include "filter_preview.h"
 #include "filter_stage.h"
 #include "part_labels.h"
@@ -16,6 +15,7 @@
 #include <mr/envelope/envelope.h>
 #include <mr/simplify/simplify.h>
 #include <mr/spatial/aabb_tree.h>
+#include <mr/spatial/defect_faces.h>
 #include <mr/tetmesh/background_mesh.h>
 #include <mr/tetmesh/convert.h>
 #include <mr/tetmesh/improve.h>
@@ -51,7 +51,7 @@ TriangleSoup simplified_input(const TriangleSoup& input, const PipelineOptions& 
   simplify_options.threads = options.tetrahedralize.threads;
   if (options.tetrahedralize.simplify_near_defects_only) {
     std::vector<std::uint8_t> near =
-        detail::faces_near_defects(input, options.tetrahedralize.defect_band_rings);
+        spatial::faces_near_defects(input, options.tetrahedralize.defect_band_rings);
     timer.count("faces_near_defects", static_cast<std::size_t>(std::count(near.begin(), near.end(), 1)));
     if (std::find(near.begin(), near.end(), 1) == near.end()) {
       timer.stage().count("faces", static_cast<std::int64_t>(input.triangles.size()));

@@ -34,6 +34,9 @@ struct HoleFillOptions {
   Density density = Density::keep;
   /// The grid the output is written on: new vertices are checked on it.
   CoordinateGrid grid = CoordinateGrid::doubles();
+  /// Stop at the first hole left open (for callers that want every hole
+  /// filled or nothing): the holes after it are neither filled nor reported.
+  bool stop_at_first_failure = false;
 };
 
 enum class HoleOutcome {

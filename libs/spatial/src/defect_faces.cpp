@@ -1,4 +1,4 @@
-#include "defect_faces.h"
+#include <mr/spatial/defect_faces.h>
 
 #include <mr/core/weld.h>
 #include <mr/kernel/predicates.h>
@@ -10,7 +10,7 @@
 #include <map>
 #include <utility>
 
-namespace mr::tetmesh::detail {
+namespace mr::spatial {
 namespace {
 
 void flag_degenerate(const TriangleSoup& welded, std::vector<std::uint8_t>& flags) {
@@ -36,11 +36,21 @@ void flag_bad_edges(const TriangleSoup& welded, std::vector<std::uint8_t>& flags
 
 void flag_intersecting(const TriangleSoup& welded, std::vector<std::uint8_t>& flags) {
   const std::vector<std::uint8_t> degenerate = flags;  // no triangle to test or to test against
-  const std::vector<std::uint8_t> meets = spatial::faces_meeting_others(welded, {}, degenerate);
+  const std::vector<std::uint8_t> meets = faces_meeting_others(welded, {}, degenerate);
   for (std::size_t f = 0; f < meets.size(); ++f) flags[f] |= meets[f];
 }
 
-void grow_by_rings(const TriangleSoup& welded, int rings, std::vector<std::uint8_t>& flags) {
+}  // namespace
+
+std::vector<std::uint8_t> defect_faces(const TriangleSoup& welded) {
+  std::vector<std::uint8_t> flags(welded.triangles.size(), 0);
+  flag_degenerate(welded, flags);
+  flag_intersecting(welded, flags);  // before any other flag: it skips the degenerate faces
+  flag_bad_edges(welded, flags);
+  return flags;
+}
+
+void grow_by_vertex_rings(const TriangleSoup& welded, int rings, std::vector<std::uint8_t>& flags) {
   std::vector<std::uint8_t> vertex(welded.positions.size());
   for (int ring = 0; ring < rings; ++ring) {
     std::fill(vertex.begin(), vertex.end(), std::uint8_t(0));
@@ -52,16 +62,11 @@ void grow_by_rings(const TriangleSoup& welded, int rings, std::vector<std::uint8
   }
 }
 
-}  // namespace
-
 std::vector<std::uint8_t> faces_near_defects(const TriangleSoup& soup, int rings) {
   const TriangleSoup welded = weld_identical_vertices(soup);
-  std::vector<std::uint8_t> flags(welded.triangles.size(), 0);
-  flag_degenerate(welded, flags);
-  flag_intersecting(welded, flags);  // before any other flag: it skips the degenerate faces
-  flag_bad_edges(welded, flags);
-  grow_by_rings(welded, rings, flags);
+  std::vector<std::uint8_t> flags = defect_faces(welded);
+  grow_by_vertex_rings(welded, rings, flags);
   return flags;
 }
 
-}  // namespace mr::tetmesh::detail
+}  // namespace mr::spatial
