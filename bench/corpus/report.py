@@ -133,29 +133,44 @@ def quality_section(order, grouped, volume, epsilon):
 
 
 
+def _defects_local(stats):
+    """Whether meshrepair found the input's defects local (--stats "defects_cut"."local"); None when not reported."""
+    return ((stats or {}).get("defects_cut") or {}).get("local")
+
+
+def _kept_median_phrase(shares, what):
+    return f"{100 * summary.median(shares):.1f}% over {len(shares)} {what}" if shares else f"no {what}"
+
+
 def kept_input_section(order, grouped):
     """meshrepair: how much of each output is input triangles kept as they were (--stats "provenance")."""
-    rows, shares = [], []
+    rows, shares, by_locality = [], [], {True: [], False: []}
     for tool in order:
         for r in sorted(grouped.get(tool, []), key=lambda r: r["model"]):
             p = (r.get("tool_stats") or {}).get("provenance")
             if r["status"] != "ok" or not p:
                 continue
             shares.append(p["kept_area_share"])
+            local = _defects_local(r["tool_stats"])
+            if local is not None:
+                by_locality[local].append(p["kept_area_share"])
             rows.append([f"`{r['model']}`", tool, (r["tool_stats"] or {}).get("path", ""), fmt(r.get("input_faces")),
+                         {True: "yes", False: "no", None: "–"}[local],
                          fmt(p["input_triangles_kept"]), f"{100 * p['kept_area_share']:.1f}%",
                          fmt(p["recut_faces"]), fmt(p["filled_faces"])])
     if not rows:
         return ""
-    shares.sort()
-    median = shares[len(shares) // 2] if len(shares) % 2 else 0.5 * (shares[len(shares) // 2 - 1] + shares[len(shares) // 2])
     return "\n".join([
         "## Input kept", "",
         f"Share of the output's area on input triangles kept as they were (corners bit for bit on the output "
-        f"grid): median {100 * median:.1f}% over {len(shares)} outputs. Recut: output faces within epsilon of an "
-        "input triangle; filled: farther from every input triangle (holes, gaps).", "",
-        _table(["model", "tool", "path", "input faces", "input faces kept", "kept area", "recut faces",
-                "filled faces"], rows)])
+        f"grid): median {_kept_median_phrase(shares, 'outputs')}; "
+        f"{_kept_median_phrase(by_locality[True], 'inputs whose defects are local')}, "
+        f"{_kept_median_phrase(by_locality[False], 'others')}. Defects local: the faces that are defects "
+        "(degenerate, meeting another improperly, on an edge of other than two faces or of two disagreeing "
+        "ones) are at most a tenth of the faces, or the only defects are holes. Recut: output faces within "
+        "epsilon of an input triangle; filled: farther from every input triangle (holes, gaps).", "",
+        _table(["model", "tool", "path", "input faces", "defects local", "input faces kept", "kept area",
+                "recut faces", "filled faces"], rows)])
 
 
 def _distance_cells(q):

@@ -102,4 +102,13 @@ TEST_CASE("parts that cross are not cut apart: they are joined through the tets"
   REQUIRE(stats["path"] == "tetrahedralize");
   REQUIRE(stats["output"]["components"] == 1);  // the union, not two shells
   REQUIRE(stats["written_file"]["watertight"] == true);
+  // The tet path reports the cut it tried, and what trying cost.
+  CHECK(stats["defects_cut"]["defect_faces"] == cut.defect_faces);
+  CHECK(stats["defects_cut"]["faces"] == welded.triangles.size());
+  CHECK(stats["defects_cut"]["local"] == cut.local);
+  CHECK(stats["defects_cut"]["rings"] == -1);
+  std::set<std::string> stages;
+  for (const nlohmann::json& stage : stats["stages"]) stages.insert(stage["name"]);
+  for (const char* name : {"hole_fill_tried", "keep_input_gave_way", "keep_input_abandoned"})
+    CHECK(stages.count(name) == 1);
 }

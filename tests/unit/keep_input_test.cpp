@@ -23,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <set>
@@ -174,6 +175,29 @@ TEST_CASE("keeping the input widens the band around defects, then rebuilds, as i
   REQUIRE(tets.mode == tools::RebuildMode::keep_input);
   REQUIRE(tets.band_rings == tools::kKeepInputBands.back());
   REQUIRE(tets.gave_way.size() == tools::kKeepInputBands.size() - 1);
+}
+
+TEST_CASE("a band with every face near a defect is inserted without the tet budget", "[repair][keep]") {
+  // Open triangles fanned around the z axis, each crossing the others: every
+  // face is a defect, so band 0 simplifies them all, as a rebuild would.
+  TriangleSoup input;
+  constexpr int kTriangles = 8;
+  for (int i = 0; i < kTriangles; ++i) {
+    const double a = 3.14159 * i / kTriangles;
+    const Index first = static_cast<Index>(input.positions.size());
+    input.positions.push_back({std::cos(a), std::sin(a), -1.0});
+    input.positions.push_back({-std::cos(a), -std::sin(a), -1.0});
+    input.positions.push_back({-0.3 * std::sin(a), 0.3 * std::cos(a), 1.0});
+    input.triangles.push_back({first, first + 1, first + 2});
+  }
+  tools::RepairTetsOptions options;
+  options.tet_budget = 10;  // far below what any insertion needs
+  const tools::RepairTets tets = tools::tetrahedralize_for_repair(input, tools::repair_defaults(),
+                                                                  tools::RebuildMode::keep_input, options);
+  REQUIRE(tets.gave_way.empty());
+  REQUIRE(tets.mode == tools::RebuildMode::keep_input);
+  REQUIRE(tets.band_rings == 0);
+  REQUIRE(tets.pipeline.mesh.tets.size() > 10);
 }
 
 TEST_CASE("meshrepair --remesh rebuilds every face", "[repair][keep][e2e]") {

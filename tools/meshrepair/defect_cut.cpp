@@ -97,7 +97,9 @@ DefectCut cut_out_defects(const TriangleSoup& welded, const DefectCutOptions& op
   const std::vector<std::uint8_t> defects = spatial::defect_faces(welded);
   result.defect_faces = static_cast<std::size_t>(std::count(defects.begin(), defects.end(), 1));
   const std::size_t faces = welded.triangles.size();
-  if (result.defect_faces > options.max_defect_share * static_cast<double>(faces)) {
+  result.faces = faces;
+  result.local = result.defect_faces <= options.max_defect_share * static_cast<double>(faces);
+  if (!result.local) {
     result.declined = "defects are not local: " + std::to_string(result.defect_faces) + " of " +
                       std::to_string(faces) + " faces";
     return result;

@@ -41,8 +41,12 @@ struct DefectCut {
   std::optional<hole_fill::HoleFillResult> fill;  ///< set when accepted: watertight, not yet oriented
   std::string declined;                           ///< why not, when fill is unset
   int rings = -1;                                 ///< the band accepted
+  std::size_t faces = 0;                          ///< faces looked at (0: the cut was not needed)
   std::size_t defect_faces = 0;                   ///< faces that are defects
-  std::size_t cut_faces = 0;                      ///< faces taken out (defects and band)
+  /// The defect faces are at most DefectCutOptions::max_defect_share of the
+  /// faces (or the only defects are holes, and no cut was needed).
+  bool local = true;
+  std::size_t cut_faces = 0;  ///< faces taken out (defects and band)
 };
 
 /// Cuts the defects out of `welded` (welded by identical positions, faces

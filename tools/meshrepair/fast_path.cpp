@@ -2,6 +2,8 @@
 
 #include <mr/tetmesh/insertion.h>
 
+#include <chrono>
+
 namespace mr::tools {
 
 tetmesh::TetrahedralizeOptions repair_defaults() {
@@ -54,6 +56,7 @@ RepairTets tetrahedralize_for_repair(const TriangleSoup& input,
       const std::size_t budget = last && options.keep_or_nothing ? 0
                                  : options.tet_budget > 0        ? options.tet_budget
                                                           : keep_input_tet_budget(input.triangles.size());
+      const auto start = std::chrono::steady_clock::now();
       try {
         tets.pipeline = tetmesh::tetrahedralize(
             input, kept_input_options(tetrahedralize, kKeepInputBands[i], budget), options.logger);
@@ -61,6 +64,8 @@ RepairTets tetrahedralize_for_repair(const TriangleSoup& input,
         tets.band_rings = kKeepInputBands[i];
         return tets;
       } catch (const tetmesh::InsertionTooCostly& e) {
+        tets.seconds_gave_way +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         tets.gave_way.push_back("band of " + std::to_string(kKeepInputBands[i]) + " rings: " + e.what());
         if (options.on_give_way)
           options.on_give_way(tets.gave_way.back(), last ? "rebuilding the surface instead"

@@ -82,6 +82,7 @@ struct RepairTets {
   RebuildMode mode = RebuildMode::remesh;  ///< remesh where keeping the input was given up
   int band_rings = -1;                     ///< the defect band the input was kept with (-1: rebuilt)
   std::vector<std::string> gave_way;       ///< why each band that gave way did, in order
+  double seconds_gave_way = 0.0;           ///< what the bands that gave way cost
 };
 
 /// The pipeline in `mode`. Keeping the input tries the bands of

@@ -228,6 +228,7 @@ struct RebuildInput {
   std::string declined;             ///< why the holes-only path declined
   double seconds_holes_only = 0.0;  ///< what finding that out cost
   KeepInputOutcome keep_input;
+  DefectCut cut;  ///< the defects the holes-only path found and could not cut out
 };
 
 // The holes-only path: its holes filled (its local defects cut out), the
@@ -249,6 +250,7 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
   const HolesOnlyRepair holes = repair_holes_only(input, grid, epsilon);
   const double seconds_fill = seconds_since(start);
   in.declined = holes.declined;
+  in.cut = holes.cut;
   in.seconds_holes_only = seconds_fill;
   if (!holes.fill) return false;
   start = std::chrono::steady_clock::now();
@@ -293,6 +295,7 @@ void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
   mode = tets.mode;
   in.keep_input.band_rings = tets.band_rings;
   in.keep_input.gave_way = tets.gave_way;
+  in.keep_input.seconds_gave_way = tets.seconds_gave_way;
   repair::RepairOptions repair_options =
       surface_repair_options(pipeline, options.tetrahedralize.threads, options.cleanup, mode);
   io::WriteOptions write_options = options.write;
@@ -320,7 +323,7 @@ void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
     cli::write_stats_file(
         options.stats_path,
         make_repair_stats({input, pipeline, repaired, written, provenance.summary, in.seconds_read,
-                           in.seconds_holes_only, seconds_write, in.declined, in.keep_input})
+                           in.seconds_holes_only, seconds_write, in.declined, in.keep_input, in.cut})
             .dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << repaired.surface.triangles.size()
@@ -337,7 +340,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   const auto start = std::chrono::steady_clock::now();
   check_file_fits(files[0], options.max_memory);
   const TriangleSoup input = io::read_surface(registry, files[0]);
-  RebuildInput rebuild{input, seconds_since(start), {}, 0.0, {}};
+  RebuildInput rebuild{input, seconds_since(start), {}, 0.0, {}, {}};
   check_faces_fit(files[0], input.num_triangles(), kPipelineBytesPerFace, options.max_memory);
   check_has_area(files[0], input);
   check_output_precision(registry, files[1], input, options);
@@ -345,6 +348,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   if (options.verbose && !options.quiet)
     err << "meshrepair: rebuilding the surface (" << rebuild.declined << ")\n";
   RebuildMode mode = rebuild_mode(input.triangles.size(), options.rebuild);
+  const auto start_rebuild = std::chrono::steady_clock::now();
   try {
     rebuild_and_write(options, registry, files, rebuild, mode, out, err);
   } catch (const RunError& e) {
@@ -356,6 +360,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
       err << "meshrepair: keeping the input failed (" << e.what() << "); rebuilding the surface instead\n";
     mode = RebuildMode::remesh;
     rebuild.keep_input.abandoned = e.what();
+    rebuild.keep_input.seconds_abandoned = seconds_since(start_rebuild);
     rebuild_and_write(options, registry, files, rebuild, mode, out, err);
   }
 }

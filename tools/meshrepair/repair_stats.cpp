@@ -26,6 +26,13 @@ nlohmann::json input_defects(const TriangleSoup& input) {
           {"components", r.components}};
 }
 
+// The defect faces found before the tets and what cutting them out gave.
+nlohmann::json defects_cut_figures(const DefectCut& cut) {
+  return {{"faces", cut.faces}, {"defect_faces", cut.defect_faces},
+          {"local", cut.local}, {"cut_faces", cut.cut_faces},
+          {"rings", cut.rings}, {"declined", cut.declined}};
+}
+
 // Genus of a closed surface: components - Euler characteristic / 2.
 std::int64_t genus(const check::SurfaceReport& r) {
   const auto v = static_cast<std::int64_t>(r.vertices), f = static_cast<std::int64_t>(r.faces);
@@ -95,6 +102,8 @@ nlohmann::json stage_seconds(const RepairRun& run) {
   nlohmann::json stages = nlohmann::json::array();
   stages.push_back({{"name", "read"}, {"seconds", run.seconds_read}});
   stages.push_back({{"name", "hole_fill_tried"}, {"seconds", run.seconds_hole_fill_tried}});
+  stages.push_back({{"name", "keep_input_abandoned"}, {"seconds", run.keep_input.seconds_abandoned}});
+  stages.push_back({{"name", "keep_input_gave_way"}, {"seconds", run.keep_input.seconds_gave_way}});
   for (const tetmesh::StageStats& s : run.pipeline.stats.stages) {
     nlohmann::json stage = {{"name", s.name}, {"seconds", s.seconds}};
     for (const auto& [key, value] : s.counts) stage["counts"][key] = value;
@@ -126,6 +135,7 @@ nlohmann::json make_repair_stats(const RepairRun& run) {
       {"keep_input_abandoned", run.keep_input.abandoned},
       {"keep_input_band_rings", run.keep_input.band_rings},
       {"keep_input_gave_way", run.keep_input.gave_way},
+      {"defects_cut", defects_cut_figures(run.defects_cut)},
       {"input", input_defects(run.input)},
       {"epsilon_abs", run.pipeline.parameters.epsilon},
       {"bbox_diagonal", run.pipeline.parameters.diagonal},
@@ -156,11 +166,7 @@ nlohmann::json make_holes_only_stats(const HolesOnlyRun& run) {
       {"flipped_faces", run.holes.flipped_faces},
       {"zero_area_faces",
        {{"taken_out", run.holes.zero_area_dropped}, {"split_faces", run.holes.split_faces}}},
-      {"defects_cut",
-       {{"defect_faces", run.holes.cut.defect_faces},
-        {"cut_faces", run.holes.cut.cut_faces},
-        {"rings", run.holes.cut.rings},
-        {"declined", run.holes.cut.declined}}},
+      {"defects_cut", defects_cut_figures(run.holes.cut)},
       {"holes",
        {{"found", fill.holes.size()},
         {"filled", fill.filled()},

@@ -24,6 +24,8 @@ struct KeepInputOutcome {
   std::string abandoned;              ///< why it was given up for a rebuild (empty: it was not)
   int band_rings = -1;                ///< the defect band the input was kept with (-1: rebuilt)
   std::vector<std::string> gave_way;  ///< why each band that gave way did
+  double seconds_gave_way = 0.0;      ///< what the bands that gave way cost
+  double seconds_abandoned = 0.0;     ///< what the run that kept the input and failed cost
 };
 
 struct RepairRun {
@@ -37,6 +39,7 @@ struct RepairRun {
   double seconds_write = 0.0;
   std::string hole_fill_declined;  ///< why the holes-only path was not taken
   KeepInputOutcome keep_input;
+  DefectCut defects_cut;  ///< the cut tried before the tets (declined)
 };
 
 nlohmann::json make_repair_stats(const RepairRun& run);

@@ -39,31 +39,51 @@ constexpr double kSimplifyEpsilonFraction = 0.8;
 // Improvement samples the envelope this much finer (see improvement_envelope).
 constexpr double kImprovementSamplingRefinement = 8.0;
 
-TriangleSoup simplified_input(const TriangleSoup& input, const PipelineOptions& options,
-                              const DerivedParameters& derived, PipelineStats& stats, const Logger& logger) {
+struct Simplified {
+  TriangleSoup surface;
+  /// simplify_near_defects_only found every face near a defect: none was
+  /// kept out of the simplification.
+  bool every_face_near_defects = false;
+};
+
+Simplified simplified_input(const TriangleSoup& input, const PipelineOptions& options,
+                            const DerivedParameters& derived, PipelineStats& stats, const Logger& logger) {
   StageTimer timer(stats, "simplify", logger);
   if (options.tetrahedralize.skip_simplify) {
     timer.stage().count("faces", static_cast<std::int64_t>(input.triangles.size()));
-    return input;
+    return {input, false};
   }
   simplify::SimplifyOptions simplify_options;
   simplify_options.epsilon_abs = kSimplifyEpsilonFraction * derived.epsilon;
   simplify_options.threads = options.tetrahedralize.threads;
+  bool every_face_near_defects = false;
   if (options.tetrahedralize.simplify_near_defects_only) {
     std::vector<std::uint8_t> near =
         spatial::faces_near_defects(input, options.tetrahedralize.defect_band_rings);
-    timer.count("faces_near_defects", static_cast<std::size_t>(std::count(near.begin(), near.end(), 1)));
-    if (std::find(near.begin(), near.end(), 1) == near.end()) {
+    const auto near_count = static_cast<std::size_t>(std::count(near.begin(), near.end(), 1));
+    timer.count("faces_near_defects", near_count);
+    if (near_count == 0) {
       timer.stage().count("faces", static_cast<std::int64_t>(input.triangles.size()));
-      return input;
+      return {input, false};
     }
+    every_face_near_defects = near_count == near.size();
     for (std::uint8_t& f : near) f = !f;
     simplify_options.frozen_faces = std::move(near);
   }
   simplify::SimplifyResult result = simplify::simplify_in_envelope(input, simplify_options);
   timer.stage().count("faces_before", static_cast<std::int64_t>(result.faces_before));
   timer.stage().count("faces", static_cast<std::int64_t>(result.faces_after));
-  return std::move(result.soup);
+  return {std::move(result.soup), every_face_near_defects};
+}
+
+// The insertion budget (max_insertion_tets) bounds what keeping the faces
+// away from defects unsimplified costs. Where every face is near a defect
+// none is kept out of the simplification, and the insertion is the one a
+// full rebuild would run: it runs unbounded rather than be redone.
+PipelineOptions budget_applied(const PipelineOptions& options, const Simplified& simplified) {
+  PipelineOptions applied = options;
+  if (simplified.every_face_near_defects) applied.tetrahedralize.max_insertion_tets = 0;
+  return applied;
 }
 
 // Embeddings to try before giving up: when some cut points cannot be
@@ -394,14 +414,16 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
   result.parameters = derive_parameters(options.tetrahedralize, input);
   const DerivedParameters& derived = result.parameters;
   const TriangleSoup oriented = oriented_input(input, result.stats, logger);
-  const TriangleSoup simplified = simplified_input(oriented, options, derived, result.stats, logger);
+  const Simplified simplified_result = simplified_input(oriented, options, derived, result.stats, logger);
+  const TriangleSoup& simplified = simplified_result.surface;
+  const PipelineOptions embedding_options = budget_applied(options, simplified_result);
 
   const std::unique_ptr<envelope::Envelope> envelope = input_envelope(input, derived);
   const std::unique_ptr<envelope::Envelope> open_boundary = open_boundary_envelope(input, derived);
   const std::unique_ptr<envelope::Envelope> improving =
       options.improve ? improvement_envelope(input, derived) : nullptr;
   EmbeddedSurface embedded = embed_and_improve(simplified, {*envelope, open_boundary.get()}, improving.get(),
-                                               derived, options, result.stats, logger);
+                                               derived, embedding_options, result.stats, logger);
   Mesh& mesh = embedded.mesh;
   const TriangleSoup& surface = embedded.surface;
   const std::vector<char>& left_out = embedded.left_out;

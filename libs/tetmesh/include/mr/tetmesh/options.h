@@ -54,6 +54,8 @@ struct TetrahedralizeOptions {
   /// the defect faces (0: the defect faces only).
   int defect_band_rings = 2;
   /// Insertion stops with InsertionTooCostly past this many tets (0: never).
+  /// With simplify_near_defects_only it bounds what keeping the faces away
+  /// from defects costs, so it does not apply where every face is near one.
   std::size_t max_insertion_tets = 0;
   /// Worker threads; 0 means all hardware threads.
   int threads = 0;
