@@ -66,6 +66,18 @@ int PlaneSideFilter::certain_sign(const Vec3d& p) const {
   return det > bound ? 1 : det < -bound ? -1 : 0;
 }
 
+bool certainly_apart_but_shared(const PlaneSideFilter& plane, const std::array<Vec3d, 3>& p,
+                                const std::array<Vec3d, 3>& q) {
+  int side = 0;
+  for (const Vec3d& x : q) {
+    if (x == p[0] || x == p[1] || x == p[2]) continue;
+    const int s = plane.certain_sign(x);
+    if (s == 0 || (side != 0 && s != side)) return false;
+    side = s;
+  }
+  return side != 0;
+}
+
 int incircle(const Vec2d& a, const Vec2d& b, const Vec2d& c, const Vec2d& d) {
   return sign_of(Epick::Side_of_oriented_circle_2()(to_cgal(a), to_cgal(b), to_cgal(c), to_cgal(d)));
 }

@@ -394,6 +394,7 @@ class VertexPlacement {
       const std::array<Vec3d, 3>& m = moved.corners.emplace_back(corners(f, v, c));
       if (collinear(m[0], m[1], m[2])) return false;
       moved.boxes.push_back(box_of(m));
+      moved.planes.emplace_back(m[0], m[1], m[2]);
     }
     // The face that refused v's last candidate usually refuses the next one
     // too (a sheet closer than a grid step): asked first, it saves scanning
@@ -429,10 +430,11 @@ class VertexPlacement {
     return box;
   }
 
-  // The faces around a vertex, moved with it, and their boxes.
+  // The faces around a vertex, moved with it, their boxes and planes.
   struct MovedFaces {
     std::vector<std::array<Vec3d, 3>> corners;
     std::vector<Box> boxes;
+    std::vector<PlaneSideFilter> planes;
   };
 
   // Whether face g (not around v) meets one of v's faces moved with v to c improperly.
@@ -440,8 +442,13 @@ class VertexPlacement {
     if (removed_[g]) return false;
     const std::array<Vec3d, 3> other = corners(g, v, c);
     const Box box_g = box_of(other);
+    // Beside long slivers most faces near v lie wholly on one side of a
+    // moved face's plane: the filter spares their exact tests.
     for (std::size_t i = 0; i < moved.corners.size(); ++i)
-      if (moved.boxes[i].overlaps(box_g) && improper(moved.corners[i], other)) return true;
+      if (moved.boxes[i].overlaps(box_g) &&
+          !certainly_apart_but_shared(moved.planes[i], moved.corners[i], other) &&
+          improper(moved.corners[i], other))
+        return true;
     return false;
   }
 

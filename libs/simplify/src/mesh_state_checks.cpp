@@ -304,8 +304,9 @@ bool MeshState::faces_apart(const std::vector<NewFace>& faces, const std::vector
     bool checked_collinear = false;
     for (std::size_t i = 0; i < faces.size(); ++i) {
       // Most faces in the box are wholly on one side of the new face's plane
-      // (long CAD slivers: 4 in 5 on manifold/Generic_Twin).
-      if (!boxes[i].intersects(box) || planes[i].certainly_one_side(b[0], b[1], b[2])) continue;
+      // (long CAD slivers: 4 in 5 on manifold/Generic_Twin), but for the
+      // corners they share with it (the faces around the collapse).
+      if (!boxes[i].intersects(box) || certainly_apart_but_shared(planes[i], faces[i].corners, b)) continue;
       // As check_surface: degenerate faces are not counted.
       if (!checked_collinear && collinear(b[0], b[1], b[2])) break;
       checked_collinear = true;

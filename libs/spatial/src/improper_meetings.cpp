@@ -9,27 +9,6 @@
 #include <array>
 
 namespace mr::spatial {
-namespace {
-
-// Whether q's corners that are not corners of p (equal positions) are
-// certainly all strictly on one side of p's plane. Then q meets that plane
-// only in the corners it shares with p, so the two meet, if at all, only in
-// what they share. Faces around a vertex or an edge pass without the exact
-// test, which their shared corners (orientation exactly 0) would send to
-// exact arithmetic.
-bool certainly_apart_but_shared(const PlaneSideFilter& plane, const std::array<Vec3d, 3>& p,
-                                const std::array<Vec3d, 3>& q) {
-  int side = 0;
-  for (const Vec3d& x : q) {
-    if (x == p[0] || x == p[1] || x == p[2]) continue;
-    const int s = plane.certain_sign(x);
-    if (s == 0 || (side != 0 && s != side)) return false;
-    side = s;
-  }
-  return side != 0;
-}
-
-}  // namespace
 
 // Candidates from the AABB tree's box query, which follows the faces' sizes. A uniform grid with
 // cells twice the mean edge kept the long slivers of CAD models in a list that every query went

@@ -25,6 +25,8 @@
 
 #include <mr/core/types.h>
 
+#include <array>
+
 namespace mr {
 
 using Vec2d = Eigen::Vector2d;
@@ -71,6 +73,16 @@ class PlaneSideFilter {
   Vec3d largest_;  ///< per axis, the largest |coordinate| of b - a and c - a
   double minor_ = 0.0;
 };
+
+/// True when the corners of triangle q that are not corners of triangle p
+/// (equal positions) are certainly all strictly on one side of p's plane
+/// (`plane`, made from p). Then q meets that plane only in the corners it
+/// shares with p, so the two meet, if at all, only in what they share:
+/// never improperly. Faces around a vertex or an edge pass without the
+/// exact test, which their shared corners (orientation exactly 0) would
+/// send to exact arithmetic. False says nothing.
+bool certainly_apart_but_shared(const PlaneSideFilter& plane, const std::array<Vec3d, 3>& p,
+                                const std::array<Vec3d, 3>& q);
 
 /// True if a, b and c lie on one line (or coincide), exactly.
 inline bool collinear(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
