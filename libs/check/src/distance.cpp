@@ -13,7 +13,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <random>
+#include <utility>
 
 namespace mr::check {
 namespace {
@@ -33,6 +35,18 @@ struct Samples {
   std::vector<Vec3d> points;
   std::vector<std::size_t> first;
 };
+
+// The Morton (Z-order) key of (u, v) in [0, 1]^2, 16 bits each.
+std::uint32_t morton_key(double u, double v) {
+  const auto spread = [](double t) {
+    std::uint32_t x = static_cast<std::uint32_t>(std::clamp(t, 0.0, 1.0) * 65535.0);
+    x = (x | (x << 8)) & 0x00FF00FFu;
+    x = (x | (x << 4)) & 0x0F0F0F0Fu;
+    x = (x | (x << 2)) & 0x33333333u;
+    return (x | (x << 1)) & 0x55555555u;
+  };
+  return spread(u) | (spread(v) << 1);
+}
 
 Samples sample_points(const TriangleSoup& soup, const DistanceOptions& options) {
   const double diagonal = bounding_box_diagonal(soup);
@@ -59,14 +73,22 @@ Samples sample_points(const TriangleSoup& soup, const DistanceOptions& options) 
     const double expected = density * area;
     auto count = static_cast<std::size_t>(expected);
     if (unit(rng) < expected - double(count)) ++count;
+    std::vector<std::pair<std::uint32_t, Vec3d>> interior;
+    interior.reserve(count);
     for (std::size_t k = 0; k < count; ++k) {
       double u = unit(rng), v = unit(rng);
       if (u + v > 1) {
         u = 1 - u;
         v = 1 - v;
       }
-      points.push_back(a + u * (b - a) + v * (c - a));
+      interior.emplace_back(morton_key(u, v), a + u * (b - a) + v * (c - a));
     }
+    // Each query starts from the previous sample's closest point: in
+    // Morton order that is nearby, and the tree is pruned at once (random
+    // order made trimesh/soup's 100 large triangles take 30 s).
+    std::stable_sort(interior.begin(), interior.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (const auto& [key, p] : interior) points.push_back(p);
   }
   samples.first.push_back(points.size());
   return samples;
