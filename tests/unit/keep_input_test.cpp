@@ -519,6 +519,11 @@ TEST_CASE("faces meeting others improperly are found exactly", "[spatial][keep]"
           std::vector<std::uint8_t>{0, 1, 0, 0});
   REQUIRE(spatial::faces_meeting_others(soup, {}, std::vector<std::uint8_t>{1, 0, 0, 0}) ==
           std::vector<std::uint8_t>{0, 0, 0, 0});
+  // With groups, only faces of another group count: a and b cross within group 0.
+  REQUIRE(spatial::faces_meeting_others(soup, {}, {}, std::vector<std::uint32_t>{0, 0, 1, 2}) ==
+          std::vector<std::uint8_t>{0, 0, 0, 0});
+  REQUIRE(spatial::faces_meeting_others(soup, {}, {}, std::vector<std::uint32_t>{0, 1, 1, 2}) ==
+          std::vector<std::uint8_t>{1, 1, 0, 0});
 }
 
 TEST_CASE("insertion stops past its tet budget", "[tetrahedralize][keep]") {

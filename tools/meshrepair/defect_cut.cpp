@@ -2,7 +2,9 @@
 
 #include <mr/check/distance.h>
 #include <mr/check/surface_check.h>
+#include <mr/core/union_find.h>
 #include <mr/spatial/defect_faces.h>
+#include <mr/spatial/improper_meetings.h>
 
 #include <algorithm>
 #include <cmath>
@@ -44,9 +46,9 @@ TriangleSoup patch_faces(const hole_fill::HoleFillResult& fill) {
 }
 
 // Why the surface `fill` made from `welded` less `cut` is refused, or an
-// empty string when it is accepted.
+// empty string when it is accepted (its signed volume then in `volume`).
 std::string refusal(const hole_fill::HoleFillResult& fill, const TriangleSoup& welded,
-                    const TriangleSoup& cut, double epsilon) {
+                    const TriangleSoup& cut, double epsilon, double& volume) {
   if (fill.filled() < fill.holes.size() || fill.open_border_edges != 0) return "a hole could not be filled";
   // The sampled distances first: they refuse most bands, for less than the
   // exact check costs.
@@ -55,10 +57,24 @@ std::string refusal(const hole_fill::HoleFillResult& fill, const TriangleSoup& w
   if (check::one_sided_distance(cut, fill.surface).max > epsilon)
     return "a face cut out is farther than epsilon from the patches";
   check::SurfaceReport report = check::check_surface(fill.surface);
+  volume = report.volume;
   report.volume = std::abs(report.volume);  // the caller turns an inward surface
   if (!report.watertight())
     return "the filled surface is not watertight: " + check::watertight_failures(report);
   return {};
+}
+
+// Whether a defect face meets a face of another part (parts: faces joined
+// through shared vertices). Cut out and filled, each part closes on its own
+// and still overlaps the other; their union needs the tets.
+bool parts_cross(const TriangleSoup& welded, const std::vector<std::uint8_t>& defects) {
+  UnionFind parts(welded.positions.size());
+  for (const Triangle& t : welded.triangles) parts.unite(t[0], t[1]), parts.unite(t[1], t[2]);
+  std::vector<std::uint32_t> part(welded.triangles.size());
+  for (std::size_t f = 0; f < part.size(); ++f)
+    part[f] = static_cast<std::uint32_t>(parts.find(welded.triangles[f][0]));
+  const std::vector<std::uint8_t> meets = spatial::faces_meeting_others(welded, defects, {}, part);
+  return std::find(meets.begin(), meets.end(), 1) != meets.end();
 }
 
 // The most faces a band may cut before wider ones are given up.
@@ -78,7 +94,7 @@ bool try_band(const TriangleSoup& welded, int rings, const TriangleSoup& cut,
   fill_options.stop_at_first_failure = true;  // a band with a hole left open is refused
   hole_fill::HoleFillResult fill =
       hole_fill::fill_holes(faces_flagged(welded, cut_flags, false), fill_options);
-  const std::string why = refusal(fill, welded, cut, options.epsilon);
+  const std::string why = refusal(fill, welded, cut, options.epsilon, result.volume);
   if (!why.empty()) {
     result.declined = "band of " + std::to_string(rings) + " rings: " + why;
     return false;
@@ -102,6 +118,10 @@ DefectCut cut_out_defects(const TriangleSoup& welded, const DefectCutOptions& op
   if (!result.local) {
     result.declined = "defects are not local: " + std::to_string(result.defect_faces) + " of " +
                       std::to_string(faces) + " faces";
+    return result;
+  }
+  if (parts_cross(welded, defects)) {
+    result.declined = "parts cross each other";
     return result;
   }
   for (int rings : options.rings) {

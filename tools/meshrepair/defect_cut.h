@@ -5,6 +5,7 @@
 // taken out and the holes left are filled. Every other input face is kept
 // as it is, at any size, with no tets; the result is accepted only when it
 // is watertight (exact) and stays within epsilon of the input both ways.
+// Parts that cross each other are not cut: they need their union.
 
 #include <mr/core/coordinate_grid.h>
 #include <mr/core/triangle_soup.h>
@@ -47,6 +48,7 @@ struct DefectCut {
   /// faces (or the only defects are holes, and no cut was needed).
   bool local = true;
   std::size_t cut_faces = 0;  ///< faces taken out (defects and band)
+  double volume = 0.0;        ///< the accepted surface's signed volume
 };
 
 /// Cuts the defects out of `welded` (welded by identical positions, faces

@@ -32,7 +32,7 @@ void cut_out(HolesOnlyRepair& r, const TriangleSoup& cleaned, const CoordinateGr
   r.declined.clear();
   r.fill = std::move(r.cut.fill);
   r.cut.fill.reset();
-  turn_outward(r.fill->surface, check::check_surface(r.fill->surface, {.self_intersections = false}).volume);
+  turn_outward(r.fill->surface, r.cut.volume);
 }
 
 }  // namespace

@@ -15,10 +15,12 @@ namespace mr::spatial {
 /// in the vertices and edges they share (mr::intersect_triangles, exact;
 /// vertices identified by position). Only faces flagged in `asked` are
 /// tested (empty: all); faces flagged in `skip` (empty: none) are neither
-/// tested nor tested against. Candidates come from an AABB tree; parallel,
-/// deterministic.
+/// tested nor tested against; with `group` (one number per face; empty:
+/// none), only faces of another group are tested against. Candidates come
+/// from an AABB tree; parallel, deterministic.
 std::vector<std::uint8_t> faces_meeting_others(const TriangleSoup& soup,
                                                std::span<const std::uint8_t> asked = {},
-                                               std::span<const std::uint8_t> skip = {});
+                                               std::span<const std::uint8_t> skip = {},
+                                               std::span<const std::uint32_t> group = {});
 
 }  // namespace mr::spatial
