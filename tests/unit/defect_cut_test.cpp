@@ -3,6 +3,7 @@
 // bit, no tets. Crossing parts are not cut: they go through the tets.
 #include "file_checks.h"
 #include "mesh_generators.h"
+#include "meshrepair_run.h"
 #include "test_support.h"
 
 #include <mr/check/self_intersections.h>
@@ -45,13 +46,7 @@ TriangleSoup sphere_with_fold(Index& moved) {
 }
 
 nlohmann::json repaired(const TriangleSoup& input, const test::TempDir& dir, const std::string& out) {
-  io::write_surface(io::make_default_registry(), input, dir / "in.obj");
-  const test::ToolRun run =
-      test::run_tool(tools::meshrepair,
-                     {(dir / "in.obj").string(), (dir / out).string(), "--stats", (dir / "s.json").string()});
-  INFO(run.err);
-  REQUIRE(run.exit_code == 0);
-  return nlohmann::json::parse(std::ifstream(dir / "s.json"));
+  return test::meshrepair_stats(input, dir, "in.obj", out);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // its loop, every input face kept, on holes built in code.
 #include "file_checks.h"
 #include "mesh_generators.h"
+#include "meshrepair_run.h"
 #include "test_support.h"
 
 #include <mr/check/surface_check.h>
@@ -83,13 +84,7 @@ TriangleSoup cube_with_zero_area_face() {
 // succeed through the holes-only path. Its --stats.
 nlohmann::json repaired_by_holes_only(const TriangleSoup& input, const test::TempDir& dir,
                                       const std::string& out) {
-  io::write_surface(io::make_default_registry(), input, dir / "in.stl");
-  const test::ToolRun run =
-      test::run_tool(tools::meshrepair,
-                     {(dir / "in.stl").string(), (dir / out).string(), "--stats", (dir / "s.json").string()});
-  INFO(run.err);
-  REQUIRE(run.exit_code == 0);
-  nlohmann::json stats = nlohmann::json::parse(std::ifstream(dir / "s.json"));
+  nlohmann::json stats = test::meshrepair_stats(input, dir, "in.stl", out);
   REQUIRE(stats["path"] == "hole_fill");
   return stats;
 }
