@@ -128,6 +128,56 @@ TEST_CASE("tet checks: exact orientation and quality", "[check]") {
   CHECK(check::min_dihedral_angle_deg(a, b, c, d) == Approx(std::acos(1.0 / 3) * 180 / M_PI));
 }
 
+TEST_CASE("AMIPS is infinite only for a tet flat or inverted exactly", "[check]") {
+  // The fourth corner walks across the plane of the other three one double
+  // at a time: there the determinant of the rounded edges is rounding error
+  // of either sign, and only the exact sign may decide.
+  const Vec3d a(0.1, 0.2, 0.3), b(1.7, 0.4, 0.35), c(0.3, 1.9, 0.33);
+  const Vec3d normal = (b - a).cross(c - a);
+  const double x = 0.9, y = 0.8;
+  double z = a.z() - (normal.x() * (x - a.x()) + normal.y() * (y - a.y())) / normal.z();
+  const double down = -std::numeric_limits<double>::infinity(), up = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 40; ++i) z = std::nextafter(z, down);
+  int positive = 0, flat_or_inverted = 0;
+  double largest_finite = 0;
+  for (int i = 0; i < 80; ++i, z = std::nextafter(z, up)) {
+    const Vec3d d(x, y, z);
+    TetMesh tet;
+    tet.positions = {a, b, c, d};
+    tet.tets = {{0, 1, 2, 3}};
+    const check::TetReport report = check::check_tets(tet);
+    const double energy = check::amips_energy(a, b, c, d);
+    if (report.inverted_tets == 0 && report.degenerate_tets == 0) {
+      ++positive;
+      REQUIRE(std::isfinite(energy));
+      largest_finite = std::max(largest_finite, energy);
+    } else {
+      ++flat_or_inverted;
+      REQUIRE(std::isinf(energy));
+    }
+  }
+  CHECK(positive > 10);
+  CHECK(flat_or_inverted > 10);
+  // A tet positive exactly whose rounded determinant is negative (-1.4e-17).
+  const Vec3d p(-0.41627067894555503, -0.50044415316658108, -0.16266294128208603),
+      q(-0.46012099168103904, -0.05081238862887294, 0.6064726443345807),
+      r(-0.083750897556795323, 0.49798156300998464, -0.42791636929363763),
+      s(-0.39584124366371942, -0.55176571332392588, -0.32124883905992208);
+  TetMesh sliver;
+  sliver.positions = {p, q, r, s};
+  sliver.tets = {{0, 1, 2, 3}};
+  REQUIRE(check::check_tets(sliver).valid());
+  CHECK(std::isfinite(check::amips_energy(p, q, r, s)));
+  CHECK(largest_finite > 1e8);  // the exact path was taken
+  // Where the rounded determinant is sound, both paths agree: near flat
+  // the energy grows as height^(-2/3).
+  const Vec3d foot = (a + b + c) / 3, unit_normal = normal.normalized();
+  const double near = check::amips_energy(a, b, c, foot + 1e-6 * unit_normal);     // about 1e4: rounded path
+  const double nearer = check::amips_energy(a, b, c, foot + 1e-12 * unit_normal);  // about 1e8: exact path
+  CHECK(nearer > 1e8);
+  CHECK(nearer / near == Approx(1e4).epsilon(1e-3));
+}
+
 TEST_CASE("sampled distance between surfaces", "[check][slow]") {
   const TriangleSoup cube = test::cube_soup();
   CHECK(check::one_sided_distance(cube, cube).max == Approx(0.0).margin(1e-12));

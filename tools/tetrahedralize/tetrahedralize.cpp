@@ -79,7 +79,8 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        "keep every tet, labelled by region (tets connected without crossing the input)",
        [&](const std::string&) { o.pipeline.filter = false; }},
       {"--snap", "", "F",
-       "snap the input to a grid of F times epsilon (a power of two at most) before inserting it "
+       "snap the input to a grid of F times epsilon (a power of two at most) before inserting it, and "
+       "move cut points closer than that to a later triangle's plane onto it "
        "(default 1e-3, at most 0.01; 0: insert the coordinates as they are)",
        [&](const std::string& v) { t.snap_fraction = parse_double("--snap", v); }},
       {"--skip-simplify", "", "", "insert the input as it is, without simplifying it first",

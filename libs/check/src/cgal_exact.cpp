@@ -105,6 +105,27 @@ int orient3d_sign(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d
   return static_cast<int>(CGAL::orientation(to_point(a), to_point(b), to_point(c), to_point(d)));
 }
 
+namespace {
+
+// x rounded to a double of the same sign (to_double may flush a tiny value to zero).
+double rounded_keeping_sign(const CGAL::Mpzf& x) {
+  const int sign = CGAL::sign(x);
+  const double rounded = CGAL::to_double(x);
+  if (sign != 0 && (rounded == 0.0 || (rounded > 0) != (sign > 0)))
+    return sign * std::numeric_limits<double>::min();
+  return rounded;
+}
+
+}  // namespace
+
+double exact_orient3d_value(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
+  const auto m = [](double x) { return CGAL::Mpzf(x); };
+  const CGAL::Mpzf ux = m(b.x()) - m(a.x()), uy = m(b.y()) - m(a.y()), uz = m(b.z()) - m(a.z());
+  const CGAL::Mpzf vx = m(c.x()) - m(a.x()), vy = m(c.y()) - m(a.y()), vz = m(c.z()) - m(a.z());
+  const CGAL::Mpzf wx = m(d.x()) - m(a.x()), wy = m(d.y()) - m(a.y()), wz = m(d.z()) - m(a.z());
+  return rounded_keeping_sign(wx * (uy * vz - uz * vy) + wy * (uz * vx - ux * vz) + wz * (ux * vy - uy * vx));
+}
+
 double exact_six_volume(const std::vector<Vec3d>& positions, const std::vector<Triangle>& triangles) {
   CGAL::Mpzf sum(0);
   for (const Triangle& t : triangles) {
@@ -115,12 +136,7 @@ double exact_six_volume(const std::vector<Vec3d>& positions, const std::vector<T
           m(a.y()) * (m(b.z()) * m(c.x()) - m(b.x()) * m(c.z())) +
           m(a.z()) * (m(b.x()) * m(c.y()) - m(b.y()) * m(c.x()));
   }
-  const int sign = CGAL::sign(sum);
-  const double rounded = CGAL::to_double(sum);
-  // to_double may flush a tiny sum to zero; the sign is what callers need.
-  if (sign != 0 && (rounded == 0.0 || (rounded > 0) != (sign > 0)))
-    return sign * std::numeric_limits<double>::min();
-  return rounded;
+  return rounded_keeping_sign(sum);
 }
 
 }  // namespace detail

@@ -52,6 +52,12 @@ Tally tally_range(const TetMesh& mesh, std::size_t begin, std::size_t end) {
 
 }  // namespace
 
+// Above this, amips_energy recomputes the determinant exactly (fTetWild
+// recomputes the whole energy in rationals above the same bound).
+constexpr double kReliableAmips = 1e8;
+// det of the inverse of a regular tet's edge matrix: 1 / (sqrt(2) / 2).
+constexpr double kRegularInverseDeterminant = 1.4142135623730951;
+
 double amips_energy(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
   // Edge matrix of the tet times the inverse of a regular tet's edge matrix.
   static const Eigen::Matrix3d regular_inverse = [] {
@@ -67,8 +73,16 @@ double amips_energy(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d&
   edges.col(2) = d - a;
   const Eigen::Matrix3d jacobian = edges * regular_inverse;
   const double det = jacobian.determinant();
-  if (!(det > 0)) return std::numeric_limits<double>::infinity();
-  return jacobian.squaredNorm() / std::cbrt(det * det);
+  const double energy = jacobian.squaredNorm() / std::cbrt(det * det);
+  if (det > 0 && energy < kReliableAmips) return energy;
+  // Near flat, the determinant of the rounded edges may be all rounding
+  // error, of either sign: take it exactly (the squared norm is well
+  // conditioned). The tet is infinite only when exactly flat or inverted,
+  // so an improvement step can tell a near-flat tet from a worse one.
+  const double exact = detail::exact_orient3d_value(a, b, c, d);
+  if (!(exact > 0)) return std::numeric_limits<double>::infinity();
+  const double root = std::cbrt(exact * kRegularInverseDeterminant);
+  return jacobian.squaredNorm() / (root * root);
 }
 
 double min_dihedral_angle_deg(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {

@@ -38,6 +38,29 @@ ExactPoint3 intersect_segment_plane(const HybridPoint& a, const HybridPoint& b, 
   return {coordinate(ha.x, hb.x), coordinate(ha.y, hb.y), coordinate(ha.z, hb.z)};
 }
 
+ExactPoint3 move_onto_plane_along_axis(const HybridPoint& a, int axis, const HybridPoint& p,
+                                       const HybridPoint& q, const HybridPoint& r) {
+  using detail::scaled_difference;
+  const detail::Homogeneous ha = detail::homogeneous(a.to_exact()), hp = detail::homogeneous(p.to_exact());
+  const auto u = scaled_difference(detail::homogeneous(q.to_exact()), hp);
+  const auto v = scaled_difference(detail::homogeneous(r.to_exact()), hp);
+  const std::array<mpz_class, 3> normal{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                                        u[0] * v[1] - u[1] * v[0]};
+  if (axis < 0 || axis > 2 || sgn(normal[axis]) == 0) {
+    throw UsageError("move_onto_plane_along_axis: the plane is parallel to the axis");
+  }
+  // side = normal . (a - p) * a.w * p.w, normal the true one times a positive
+  // factor k; a moves by -side / (a.w * p.w * normal[axis]) along the axis.
+  const auto d = scaled_difference(ha, hp);
+  const mpz_class side = normal[0] * d[0] + normal[1] * d[1] + normal[2] * d[2];
+  const mpz_class& along = axis == 0 ? ha.x : axis == 1 ? ha.y : ha.z;
+  mpq_class moved(along * hp.w * normal[axis] - side, ha.w * hp.w * normal[axis]);
+  moved.canonicalize();
+  ExactPoint3 out = a.to_exact();
+  (axis == 0 ? out.x : axis == 1 ? out.y : out.z) = std::move(moved);
+  return out;
+}
+
 std::optional<ExactPoint3> intersect_segment_triangle_point(const HybridPoint& a, const HybridPoint& b,
                                                             const HybridPoint& p, const HybridPoint& q,
                                                             const HybridPoint& r) {

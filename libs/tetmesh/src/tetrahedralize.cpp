@@ -175,6 +175,7 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
     StageTimer timer(stats, "insertion", logger);
     InsertionOptions insertion;
     insertion.max_tets = options.tetrahedralize.max_insertion_tets;
+    insertion.snap_distance = derived.snap_spacing;
     InsertionStats inserted =
         insert_triangles(mesh, surface, background.input_vertex, skip, logger, insertion);
     timer.count("triangles", inserted.inserted);
@@ -187,6 +188,7 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
     timer.count("steiner_points", inserted.steiner_points);
     timer.count("eagerly_rounded", inserted.eagerly_rounded);
     timer.count("already_faces", inserted.already_faces);
+    timer.count("snapped_points", inserted.snapped_points);
     timer.count("tets", mesh.num_tets());
     embedding.creator = std::move(inserted.vertex_creator);
     embedding.marked_as = std::move(inserted.marked_as);

@@ -13,8 +13,8 @@
 
 namespace mr::tetmesh::detail {
 
-TriangleInserter::TriangleInserter(Mesh& mesh, std::size_t max_exact_bits)
-    : mesh_(mesh), max_exact_bits_(max_exact_bits) {
+TriangleInserter::TriangleInserter(Mesh& mesh, std::size_t max_exact_bits, double snap_distance)
+    : mesh_(mesh), max_exact_bits_(max_exact_bits), snap_distance_(snap_distance) {
   seed_tet_.assign(mesh.vertex_slots(), kNoTet);
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
     if (!mesh.tet_alive(t)) continue;
@@ -259,6 +259,10 @@ bool TriangleInserter::insert(std::span<const Index> corners, std::uint32_t id) 
     return true;
   }
   collect_candidates();
+  if (snap_distance_ > 0 && snap_points_near_plane() > 0) {
+    forget_candidates();
+    collect_candidates();
+  }
   register_cut_points();
   split_faces_of_cut_tets();
   clip_faces_on_plane();

@@ -5,7 +5,9 @@
 //
 // For input polygon T (usually a triangle) with plane P:
 // 1. candidates: the tets that may meet T (a conservative exact test),
-//    found by walking from a tet at T's first corner;
+//    found by walking from a tet at T's first corner; cut points closer to
+//    P than the snap distance, on no tracked face, are first moved onto P
+//    where no tet around them inverts (triangle_inserter_snap.cpp);
 // 2. the candidates P crosses, where the section overlaps T, are cut by P: a rational point on each crossed
 //    edge, the section polygon between the two halves;
 // 3. every polygon on P (sections, and existing faces lying on P) is clipped
@@ -45,13 +47,15 @@ struct InsertionCounters {
   std::size_t steiner_points = 0;   ///< cell centres, where no corner could cone a cell
   std::size_t eagerly_rounded = 0;  ///< cut points rounded during insertion (too many bits)
   std::size_t already_faces = 0;    ///< triangles that were a mesh face already: marked, nothing cut
+  std::size_t snapped_points = 0;   ///< cut points moved onto a later plane near them
 };
 
 class TriangleInserter {
  public:
   /// Cut points longer than `max_exact_bits` (bit_size) are rounded during
-  /// insertion where nothing inverts.
-  TriangleInserter(Mesh& mesh, std::size_t max_exact_bits);
+  /// insertion where nothing inverts; those closer than `snap_distance` to
+  /// a later polygon's plane may be moved onto it (0: never).
+  TriangleInserter(Mesh& mesh, std::size_t max_exact_bits, double snap_distance = 0.0);
 
   /// Most corners of a polygon insert() accepts.
   static constexpr std::size_t kMaxCorners = 12;
@@ -88,6 +92,9 @@ class TriangleInserter {
   int line_side(int line, Index v);
   bool may_meet_polygon(Index t);
   void collect_candidates();
+  void forget_candidates();
+  std::size_t snap_points_near_plane();
+  bool try_move_onto_plane(Index v);
   bool is_cut(Index t);
   bool section_outside_a_line(Index t);
   const HybridPoint& plane_point(Index u, Index v);
@@ -123,6 +130,7 @@ class TriangleInserter {
 
   Mesh& mesh_;
   std::size_t max_exact_bits_;
+  double snap_distance_;
   std::vector<Index> seed_tet_;  ///< per vertex slot, a live tet having it as a corner
   std::vector<std::uint32_t> creator_;
   InsertionCounters counters_;

@@ -86,6 +86,36 @@ TEST_CASE("constructions return exact endpoints and vertices on touching cases",
   CHECK_FALSE(hy == HybridPoint(hy.approx));
 }
 
+TEST_CASE("a point moved onto a plane along an axis lies on it exactly, other coordinates kept", "[kernel]") {
+  std::mt19937_64 rng(7);
+  int moved = 0;
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3d p = random_point(rng), q = random_point(rng), r = random_point(rng);
+    // A rational start too, as the inserter moves cut points (each end on
+    // its side of the plane x + y + z = 1.5).
+    const HybridPoint a = HybridPoint::from_exact(intersect_segment_plane(
+        Vec3d(random_point(rng) - Vec3d(2, 2, 2)), Vec3d(random_point(rng) + Vec3d(2, 2, 2)),
+        Vec3d(1.5, 0, 0), Vec3d(0, 1.5, 0), Vec3d(0, 0, 1.5)));
+    for (int axis = 0; axis < 3; ++axis) {
+      if (orient2d_projected(HybridPoint(p), HybridPoint(q), HybridPoint(r), axis) == 0) {
+        CHECK_THROWS_AS(move_onto_plane_along_axis(a, axis, p, q, r), UsageError);
+        continue;
+      }
+      const ExactPoint3 x = move_onto_plane_along_axis(a, axis, p, q, r);
+      ++moved;
+      REQUIRE(orient3d(ExactPoint3(p), ExactPoint3(q), ExactPoint3(r), x) == 0);
+      for (int other = 0; other < 3; ++other) {
+        if (other != axis) REQUIRE(x[other] == a.to_exact()[other]);
+      }
+    }
+  }
+  CHECK(moved > 2900);
+  const Vec3d p(0, 0, 1), q(1, 0, 1), r(0, 1, 1);
+  CHECK(move_onto_plane_along_axis(HybridPoint(Vec3d(0.25, 0.5, -3)), 2, p, q, r) ==
+        ExactPoint3(Vec3d(0.25, 0.5, 1)));
+  CHECK_THROWS_AS(move_onto_plane_along_axis(HybridPoint(Vec3d(0, 0, 0)), 0, p, q, r), UsageError);
+}
+
 TEST_CASE("opposite_face keeps the orientation of the tet for every corner", "[kernel]") {
   std::mt19937_64 rng(11);
   std::vector<Vec3d> pts(4);

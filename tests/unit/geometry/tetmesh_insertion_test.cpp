@@ -192,6 +192,28 @@ TEST_CASE("insertion: random intersecting soups are embedded exactly", "[tetmesh
   }
 }
 
+TEST_CASE("insertion: cut points near a later plane move onto it, the embedding still exact",
+          "[tetmesh][insertion]") {
+  // A unit cube whose top is two triangles all but coplanar (one corner
+  // raised by 1e-9): the first one's plane cuts the tets beyond its
+  // diagonal within 1e-9 of the second one's plane.
+  TriangleSoup soup;
+  soup.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0},        {0, 1, 0},
+                    {0, 0, 1}, {1, 0, 1}, {1, 1, 1 + 1e-9}, {0, 1, 1}};
+  soup.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                    {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  const Inserted plain = insert_soup(soup);
+  require_exactly_embedded(soup, plain);
+  CHECK(plain.stats.snapped_points == 0);
+  InsertionOptions snapping;
+  snapping.snap_distance = derive_parameters({}, soup).snap_spacing;
+  REQUIRE(snapping.snap_distance > 0);
+  const Inserted snapped = insert_soup(soup, snapping);
+  require_exactly_embedded(soup, snapped);
+  CHECK(snapped.stats.snapped_points > 0);
+  CHECK(snapped.stats.new_vertices < plain.stats.new_vertices);
+}
+
 TEST_CASE("insertion: cut points that grow too long are rounded at once, the embedding still exact",
           "[tetmesh][insertion][slow]") {
   // Many triangles through one region: cuts of cuts of cuts, whose exact

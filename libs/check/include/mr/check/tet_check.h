@@ -25,7 +25,8 @@ struct TetReport {
 TetReport check_tets(const TetMesh& mesh, const SurfaceCheckOptions& boundary_options = {});
 
 /// Conformal AMIPS energy tr(J^T J) / det(J)^(2/3) of the map from a regular
-/// tet; 3 for a regular tet, +infinity for a flat or inverted one.
+/// tet; 3 for a regular tet, +infinity for one flat or inverted exactly
+/// (near flat, det(J) is computed exactly).
 double amips_energy(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);
 
 /// The smallest of the six dihedral angles, in degrees.

@@ -18,6 +18,12 @@ namespace mr {
 ExactPoint3 intersect_segment_plane(const HybridPoint& a, const HybridPoint& b, const HybridPoint& p,
                                     const HybridPoint& q, const HybridPoint& r);
 
+/// Point a moved along coordinate axis `axis` (0, 1, 2) onto the plane
+/// through p, q, r: only that coordinate changes. Precondition
+/// (mr::UsageError otherwise): the plane is not parallel to the axis.
+ExactPoint3 move_onto_plane_along_axis(const HybridPoint& a, int axis, const HybridPoint& p,
+                                       const HybridPoint& q, const HybridPoint& r);
+
 /// The common point of segment [a, b] and triangle (p, q, r) when they meet in
 /// exactly one point with the segment outside the plane (SegmentTriangleKind::point);
 /// std::nullopt when they are disjoint or the segment lies in the plane.

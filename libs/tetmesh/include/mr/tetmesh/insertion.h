@@ -27,9 +27,10 @@ struct InsertionStats {
   std::size_t new_tets = 0;
   std::size_t new_vertices = 0;
   std::size_t steiner_points = 0;
-  std::size_t eagerly_rounded = 0;    ///< cut points too long to keep exact, rounded at once
-  std::size_t already_faces = 0;      ///< of `inserted`, triangles that were mesh faces: marked, not cut
-  std::size_t skipped = 0;            ///< left out on request (see `skip`)
+  std::size_t eagerly_rounded = 0;  ///< cut points too long to keep exact, rounded at once
+  std::size_t already_faces = 0;    ///< of `inserted`, triangles that were mesh faces: marked, not cut
+  std::size_t snapped_points = 0;   ///< cut points moved onto a later plane (InsertionOptions::snap_distance)
+  std::size_t skipped = 0;          ///< left out on request (see `skip`)
   std::size_t rational_vertices = 0;  ///< still rational when insertion ended
   /// Per vertex slot, the id of the triangle whose insertion created the
   /// vertex; kNoCreator for the vertices of the background mesh.
@@ -45,6 +46,11 @@ struct InsertionOptions {
   /// cuts multiply the length) is rounded as soon as its triangle is in, if
   /// no tet around it inverts; the others wait for the rounding stage.
   std::size_t max_exact_bits = 16384;
+  /// A cut point on no tracked face (nor the hull) closer than this to the
+  /// plane of a later polygon is moved onto it, exactly, when no tet around
+  /// it inverts: the plane then passes through it instead of cutting its
+  /// edges beside it (0: never). The tracked faces do not move.
+  double snap_distance = 0.0;
   /// Insert edge-adjacent triangles that lie in one plane with the same
   /// orientation as one convex polygon (coplanar_polygons.h): the edges
   /// between them are not cut into the mesh, and the polygon's faces carry
