@@ -28,8 +28,10 @@ void TriangleInserter::forget_candidates() {
   cut_tets_.clear();
 }
 
-// Whether the plane test is worth an exact move: a filter on doubles, the
-// move itself is decided exactly (try_move_onto_plane).
+// Moves the cut points among the candidates' corners that lie within the
+// snap distance of P onto it; returns how many moved. The distance on
+// doubles only chooses which points to try: each move is decided exactly
+// (try_move_onto_plane).
 std::size_t TriangleInserter::snap_points_near_plane() {
   std::vector<Index> corners;
   for (const Index t : candidates_) {
@@ -71,7 +73,7 @@ bool TriangleInserter::try_move_onto_plane(Index v) {
   if (bit_size(onto) > max_exact_bits_) return false;
   const HybridPoint moved = HybridPoint::from_exact(onto);
   for (const Index t : star) {
-    Tet c = mesh_.tet(t);
+    const Tet& c = mesh_.tet(t);
     const auto at = [&](Index x) -> const HybridPoint& { return x == v ? moved : mesh_.position(x); };
     if (orient3d(at(c[0]), at(c[1]), at(c[2]), at(c[3])) <= 0) return false;
   }
