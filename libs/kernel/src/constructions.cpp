@@ -5,25 +5,35 @@
 #include <mr/core/errors.h>
 
 namespace mr {
+namespace {
+
+using Normal = std::array<mpz_class, 3>;
+
+// The normal of the plane through p, q, r, times a positive factor k.
+Normal scaled_normal(const detail::Homogeneous& hp, const HybridPoint& q, const HybridPoint& r) {
+  const auto u = detail::scaled_difference(detail::homogeneous(q.to_exact()), hp);
+  const auto v = detail::scaled_difference(detail::homogeneous(r.to_exact()), hp);
+  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+}
+
+// normal . (x - p), times x.w * p.w.
+mpz_class scaled_side(const Normal& normal, const detail::Homogeneous& x, const detail::Homogeneous& hp) {
+  const auto d = detail::scaled_difference(x, hp);
+  return normal[0] * d[0] + normal[1] * d[1] + normal[2] * d[2];
+}
+
+}  // namespace
 
 ExactPoint3 intersect_segment_plane(const HybridPoint& a, const HybridPoint& b, const HybridPoint& p,
                                     const HybridPoint& q, const HybridPoint& r) {
   // On integers over common denominators (detail::Homogeneous): a chain of
   // mpq operations reduces every intermediate by a gcd; this reduces the
   // three coordinates once, at the end.
-  using detail::scaled_difference;
   const detail::Homogeneous ha = detail::homogeneous(a.to_exact()), hb = detail::homogeneous(b.to_exact());
   const detail::Homogeneous hp = detail::homogeneous(p.to_exact());
-  const auto u = scaled_difference(detail::homogeneous(q.to_exact()), hp);
-  const auto v = scaled_difference(detail::homogeneous(r.to_exact()), hp);
-  const std::array<mpz_class, 3> normal{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                                        u[0] * v[1] - u[1] * v[0]};
+  const Normal normal = scaled_normal(hp, q, r);
   // The sides of a and b, each times a positive factor k * a.w (b.w).
-  const auto side = [&](const detail::Homogeneous& x) {
-    const auto d = scaled_difference(x, hp);
-    return mpz_class(normal[0] * d[0] + normal[1] * d[1] + normal[2] * d[2]);
-  };
-  const mpz_class sa = side(ha), sb = side(hb);
+  const mpz_class sa = scaled_side(normal, ha, hp), sb = scaled_side(normal, hb, hp);
   if (sgn(sa) * sgn(sb) > 0 || (sgn(sa) == 0 && sgn(sb) == 0)) {
     throw UsageError("intersect_segment_plane: the segment does not cross the plane at one point");
   }
@@ -40,19 +50,14 @@ ExactPoint3 intersect_segment_plane(const HybridPoint& a, const HybridPoint& b, 
 
 ExactPoint3 move_onto_plane_along_axis(const HybridPoint& a, int axis, const HybridPoint& p,
                                        const HybridPoint& q, const HybridPoint& r) {
-  using detail::scaled_difference;
   const detail::Homogeneous ha = detail::homogeneous(a.to_exact()), hp = detail::homogeneous(p.to_exact());
-  const auto u = scaled_difference(detail::homogeneous(q.to_exact()), hp);
-  const auto v = scaled_difference(detail::homogeneous(r.to_exact()), hp);
-  const std::array<mpz_class, 3> normal{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                                        u[0] * v[1] - u[1] * v[0]};
+  const Normal normal = scaled_normal(hp, q, r);
   if (axis < 0 || axis > 2 || sgn(normal[axis]) == 0) {
     throw UsageError("move_onto_plane_along_axis: the plane is parallel to the axis");
   }
   // side = normal . (a - p) * a.w * p.w, normal the true one times a positive
   // factor k; a moves by -side / (a.w * p.w * normal[axis]) along the axis.
-  const auto d = scaled_difference(ha, hp);
-  const mpz_class side = normal[0] * d[0] + normal[1] * d[1] + normal[2] * d[2];
+  const mpz_class side = scaled_side(normal, ha, hp);
   const mpz_class& along = axis == 0 ? ha.x : axis == 1 ? ha.y : ha.z;
   mpq_class moved(along * hp.w * normal[axis] - side, ha.w * hp.w * normal[axis]);
   moved.canonicalize();
