@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <string>
 
@@ -100,6 +101,26 @@ void check_budget(std::size_t tets, std::size_t tets_before, std::size_t done, s
                            " times its budget of " + std::to_string(max_tets) + ": " + after);
 }
 
+// Triangles are inserted in a seeded random order, as randomized incremental
+// constructions are. In file order, neighbours follow each other and each
+// plane cuts again the thin tets its neighbour's cut just made near it:
+// thingi10k/88566 made 290,571 cut points in 32 s that way, 103,250 in 9.9 s
+// shuffled (1514499: 334,072 -> 180,475; trimesh/boolean 166,352 ->
+// 139,489). Fisher-Yates on a xorshift generator: the same order on every
+// platform and thread count.
+std::vector<std::size_t> insertion_order(std::size_t n) {
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::uint64_t state = 0x9E3779B97F4A7C15ull;
+  for (std::size_t i = n; i > 1; --i) {
+    state ^= state << 13;
+    state ^= state >> 7;
+    state ^= state << 17;
+    std::swap(order[i - 1], order[state % i]);
+  }
+  return order;
+}
+
 }  // namespace
 
 InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input, std::span<const Index> input_vertex,
@@ -125,9 +146,13 @@ InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input, std::span
   InsertionStats stats;
   const std::size_t tets_before = mesh.num_tets();
   stats.marked_as.resize(n);
-  auto polygon = grouping.polygons.begin();
+  std::vector<std::size_t> polygon_at(n, 0);
+  for (std::size_t p = 0, i = 0; i < n; ++i)
+    if (grouping.polygon_of[i] == i) polygon_at[i] = p++;
+  const std::vector<std::size_t> order = insertion_order(n);
   const std::size_t report_every = std::max<std::size_t>(1, n / 100);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t step = 0; step < n; ++step) {
+    const std::size_t i = order[step];
     const auto id = static_cast<std::uint32_t>(i);
     stats.marked_as[i] = id;
     if (!skip.empty() && skip[i] != 0) {
@@ -139,15 +164,16 @@ InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input, std::span
       const auto& [a, b, c] = triangles[i];
       if (copies.first_on(a, b, c, id) == id) inserter.insert(triangles[i], id);
     } else if (group == id) {
-      inserter.insert(polygon->corners, id);
-      if (polygon->corners.size() > 3) ++stats.polygons;
-      ++polygon;
+      const auto& polygon = grouping.polygons[polygon_at[i]];
+      inserter.insert(polygon.corners, id);
+      if (polygon.corners.size() > 3) ++stats.polygons;
     } else {
       stats.marked_as[i] = group;
       ++stats.merged;
     }
-    if (i % report_every == 0) logger.progress("insertion", static_cast<double>(i) / static_cast<double>(n));
-    if (options.max_tets != 0) check_budget(mesh.num_tets(), tets_before, i + 1, n, options.max_tets);
+    if (step % report_every == 0)
+      logger.progress("insertion", static_cast<double>(step) / static_cast<double>(n));
+    if (options.max_tets != 0) check_budget(mesh.num_tets(), tets_before, step + 1, n, options.max_tets);
   }
   copies.mark(mesh);
   stats.copies = copies.count();
