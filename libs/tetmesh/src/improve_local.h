@@ -59,6 +59,11 @@ class Workspace {
   /// date by replace_tets.
   TetPayload payload;
 
+  /// Per vertex slot, whether the pass works there; empty: everywhere.
+  /// Once few tets are bad, passes work only around them (improve_driver.cpp).
+  std::vector<char> focus;
+  bool in_focus(Index v) const { return focus.empty() || (v < focus.size() && focus[v] != 0); }
+
   /// Whether tet t's energy may block an operation (kWritten, kBesideWritten).
   bool counts(Index t) const { return t >= payload.fate.size() || payload.fate[t] != kDropped; }
   /// Whether tet t's energy drives the passes and the stop (kWritten).
@@ -83,6 +88,7 @@ class Workspace {
   /// Samples `field` (ImproveOptions::sizing) at every live vertex, and
   /// from now on at every vertex made.
   FieldSamples use_sizing_field(const ScalarField* field);
+  bool has_sizing_field() const { return field_ != nullptr; }
   /// Local target length at vertex v over the global one: the sizing
   /// field's scale times the refinement's.
   double scale(Index v) const;

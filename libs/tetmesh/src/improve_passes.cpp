@@ -33,7 +33,9 @@ std::vector<std::array<Index, 3>> counted_edges(const Workspace& ws) {
     if (!mesh.tet_alive(t) || !ws.counts(t)) continue;
     const Tet& c = mesh.tet(t);
     for (int i = 0; i < 4; ++i) {
-      for (int j = i + 1; j < 4; ++j) edges.push_back({std::min(c[i], c[j]), std::max(c[i], c[j]), t});
+      for (int j = i + 1; j < 4; ++j)
+        if (ws.in_focus(c[i]) && ws.in_focus(c[j]))
+          edges.push_back({std::min(c[i], c[j]), std::max(c[i], c[j]), t});
     }
   }
   tbb::parallel_sort(edges.begin(), edges.end());
@@ -62,13 +64,15 @@ std::vector<EdgeCandidate> edge_candidates(const Workspace& ws, Keep keep, bool 
   return out;
 }
 
-// Greedy colouring in vertex order: no two vertices of one colour share a tet.
-std::vector<std::vector<Index>> colour_classes(const Mesh& mesh, const VertexTets& incidence) {
+// Greedy colouring in vertex order of the vertices in focus: no two
+// vertices of one colour share a tet.
+std::vector<std::vector<Index>> colour_classes(const Workspace& ws, const VertexTets& incidence) {
+  const Mesh& mesh = ws.mesh;
   std::vector<int> colour(mesh.vertex_slots(), -1);
   std::vector<std::vector<Index>> classes;
   std::vector<char> used;
   for (Index v = 0; v < mesh.vertex_slots(); ++v) {
-    if (!mesh.vertex_alive(v) || incidence.of(v).empty()) continue;
+    if (!mesh.vertex_alive(v) || !ws.in_focus(v) || incidence.of(v).empty()) continue;
     used.assign(classes.size() + 1, 0);
     for (const Index t : incidence.of(v)) {
       for (const Index w : mesh.tet(t)) {
@@ -81,6 +85,10 @@ std::vector<std::vector<Index>> colour_classes(const Mesh& mesh, const VertexTet
     classes[c].push_back(v);
   }
   return classes;
+}
+
+bool in_focus(const Workspace& ws, const Tet& c) {
+  return std::any_of(c.begin(), c.end(), [&](Index v) { return ws.in_focus(v); });
 }
 
 }  // namespace
@@ -206,7 +214,8 @@ SwapCounts swap_pass(Workspace& ws) {
   const std::vector<double> energy = tet_energies(ws);
   std::vector<std::pair<double, Index>> bad;
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
-    if (mesh.tet_alive(t) && energy[t] > kWorthSwapping) bad.emplace_back(-energy[t], t);
+    if (mesh.tet_alive(t) && energy[t] > kWorthSwapping && in_focus(ws, mesh.tet(t)))
+      bad.emplace_back(-energy[t], t);
   }
   std::sort(bad.begin(), bad.end());
   std::vector<Tet> corners;
@@ -239,7 +248,7 @@ SwapCounts swap_pass(Workspace& ws) {
 std::size_t smooth_pass(Workspace& ws) {
   const VertexTets incidence(ws.mesh);
   std::vector<char> moved(ws.mesh.vertex_slots(), 0);
-  for (const std::vector<Index>& vertices : colour_classes(ws.mesh, incidence)) {
+  for (const std::vector<Index>& vertices : colour_classes(ws, incidence)) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertices.size(), 64),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
