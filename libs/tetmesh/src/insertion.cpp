@@ -101,16 +101,16 @@ void check_budget(std::size_t tets, std::size_t tets_before, std::size_t done, s
                            " times its budget of " + std::to_string(max_tets) + ": " + after);
 }
 
-// Triangles are inserted in a seeded random order, as randomized incremental
-// constructions are. In file order, neighbours follow each other and each
-// plane cuts again the thin tets its neighbour's cut just made near it:
-// thingi10k/88566 made 290,571 cut points in 32 s that way, 103,250 in 9.9 s
-// shuffled (1514499: 334,072 -> 180,475; trimesh/boolean 166,352 ->
-// 139,489). Fisher-Yates on a xorshift generator: the same order on every
-// platform and thread count.
-std::vector<std::size_t> insertion_order(std::size_t n) {
+// Triangles may be inserted in a seeded random order, as randomized
+// incremental constructions are (InsertionOptions::random_order). In file order, neighbours follow each other
+// and each plane cuts again the thin tets its neighbour's cut just made near it: thingi10k/88566 made 290,571
+// cut points in 32 s that way, 103,250 in 9.9 s shuffled (1514499: 334,072 -> 180,475; trimesh/boolean
+// 166,352 -> 139,489). Fisher-Yates on a xorshift generator: the same order on every platform and thread
+// count.
+std::vector<std::size_t> insertion_order(std::size_t n, bool random) {
   std::vector<std::size_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  if (!random) return order;
   std::uint64_t state = 0x9E3779B97F4A7C15ull;
   for (std::size_t i = n; i > 1; --i) {
     state ^= state << 13;
@@ -149,7 +149,7 @@ InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input, std::span
   std::vector<std::size_t> polygon_at(n, 0);
   for (std::size_t p = 0, i = 0; i < n; ++i)
     if (grouping.polygon_of[i] == i) polygon_at[i] = p++;
-  const std::vector<std::size_t> order = insertion_order(n);
+  const std::vector<std::size_t> order = insertion_order(n, options.random_order);
   const std::size_t report_every = std::max<std::size_t>(1, n / 100);
   for (std::size_t step = 0; step < n; ++step) {
     const std::size_t i = order[step];

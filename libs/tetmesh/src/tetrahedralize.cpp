@@ -179,6 +179,10 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
     // improvement (meshrepair) it only cost time: manifold/Offset1's kept
     // try 14 -> 61 s.
     insertion.snap_distance = options.improve ? derived.snap_spacing : 0.0;
+    // The same for the random order: on meshrepair's path it made
+    // trimesh/chair_model's cut points 76k -> 130k, whose surface then found
+    // no float32 place within 300 s.
+    insertion.random_order = options.improve;
     InsertionStats inserted =
         insert_triangles(mesh, surface, background.input_vertex, skip, logger, insertion);
     timer.count("triangles", inserted.inserted);

@@ -51,6 +51,10 @@ struct InsertionOptions {
   /// it inverts: the plane then passes through it instead of cutting its
   /// edges beside it (0: never). The tracked faces do not move.
   double snap_distance = 0.0;
+  /// Insert the triangles in a seeded random order (the same on every
+  /// machine) instead of the input's: fewer cut points where neighbours'
+  /// planes cut each other's thin tets (insertion.cpp).
+  bool random_order = false;
   /// Insert edge-adjacent triangles that lie in one plane with the same
   /// orientation as one convex polygon (coplanar_polygons.h): the edges
   /// between them are not cut into the mesh, and the polygon's faces carry
