@@ -192,6 +192,27 @@ TEST_CASE("insertion: random intersecting soups are embedded exactly", "[tetmesh
   }
 }
 
+TEST_CASE("insertion: in random order the embedding is exact and the same every run",
+          "[tetmesh][insertion][slow]") {
+  const TriangleSoup soup = random_soup(4, 25);
+  InsertionOptions options;
+  options.random_order = true;
+  const Inserted first = insert_soup(soup, options);
+  require_exactly_embedded(soup, first);
+  const Inserted again = insert_soup(soup, options);
+  CHECK(again.stats.new_vertices == first.stats.new_vertices);
+  REQUIRE(again.background.mesh.tet_slots() == first.background.mesh.tet_slots());
+  for (Index t = 0; t < first.background.mesh.tet_slots(); ++t) {
+    REQUIRE(again.background.mesh.tet_alive(t) == first.background.mesh.tet_alive(t));
+    if (first.background.mesh.tet_alive(t))
+      REQUIRE(again.background.mesh.tet(t) == first.background.mesh.tet(t));
+  }
+  // The order differs from the input's: file order cuts another mesh.
+  const Inserted in_order = insert_soup(soup);
+  require_exactly_embedded(soup, in_order);
+  CHECK(in_order.stats.new_vertices != first.stats.new_vertices);
+}
+
 TEST_CASE("insertion: cut points near a later plane move onto it, the embedding still exact",
           "[tetmesh][insertion]") {
   // A unit cube whose top is two triangles all but coplanar (one corner
