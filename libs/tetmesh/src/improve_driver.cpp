@@ -155,23 +155,25 @@ void set_focus(Workspace& ws, std::span<const double> energy, bool whole) {
   const Mesh& mesh = ws.mesh;
   std::size_t driving = 0, bad = 0;
   std::vector<char> focus(mesh.vertex_slots(), 0);
+  std::vector<Index> frontier;  // the vertices the last ring added
+  const auto add = [&](Index v, std::vector<Index>& to) {
+    if (focus[v] == 0) focus[v] = 1, to.push_back(v);
+  };
   for (Index t = 0; t < energy.size(); ++t) {
     if (!mesh.tet_alive(t) || !ws.drives(t)) continue;
     ++driving;
     if (energy[t] < ws.stop_energy) continue;
     ++bad;
-    for (const Index v : mesh.tet(t)) focus[v] = 1;
+    for (const Index v : mesh.tet(t)) add(v, frontier);
   }
   if (double(bad) > kFocusShare * double(driving)) return;
   const VertexTets incidence(mesh);
   for (int ring = 0; ring < kFocusRings; ++ring) {
-    std::vector<char> grown = focus;
-    for (Index v = 0; v < mesh.vertex_slots(); ++v) {
-      if (focus[v] == 0) continue;
+    std::vector<Index> next;
+    for (const Index v : frontier)
       for (const Index t : incidence.of(v))
-        for (const Index w : mesh.tet(t)) grown[w] = 1;
-    }
-    focus = std::move(grown);
+        for (const Index w : mesh.tet(t)) add(w, next);
+    frontier = std::move(next);
   }
   ws.focus = std::move(focus);
 }
@@ -221,16 +223,19 @@ struct Snapshot {
   }
 };
 
-void polish(Workspace& ws, ImproveStats& stats, std::vector<EnergyState>& history, const Logger& logger) {
+// `energy`: per tet slot, after the last pass.
+void polish(Workspace& ws, ImproveStats& stats, std::vector<EnergyState>& history, std::vector<double> energy,
+            const Logger& logger) {
   if (history.back().max < ws.stop_energy) return;
   std::optional<Snapshot> best;
   double best_max = history.back().max;
   for (int pass = 0; pass < kMaxPolishPasses && best_max >= ws.stop_energy; ++pass) {
     if (!best) best.emplace(ws);
-    set_focus(ws, tet_energies(ws, true), ws.has_sizing_field());
+    set_focus(ws, energy, ws.has_sizing_field());
     run_pass(ws, stats, false);
     ++stats.polish_passes;
-    const EnergyState state = energy_state(ws, tet_energies(ws, true));
+    energy = tet_energies(ws, true);
+    const EnergyState state = energy_state(ws, energy);
     logger.log(LogLevel::debug, "polish " + pass_summary(stats.passes + pass + 1, stats, state));
     history.push_back(state);
     if (!(state.max < 0.99 * best_max)) break;
@@ -287,7 +292,7 @@ ImproveStats run_passes(Mesh& mesh, const SurfaceBounds& bounds, const ImproveOp
     if (!improved_lately(history, hit_floor ? kPatience : kLongPatience)) break;
   }
   stats.passes_max_amips = history.back().max;
-  polish(ws, stats, history, logger);
+  polish(ws, stats, history, std::move(energy), logger);
   ws.focus.clear();
   stats.rational_vertices = round_in_place(ws);
   stats.after = measure_quality(mesh);

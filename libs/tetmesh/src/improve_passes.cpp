@@ -87,7 +87,8 @@ std::vector<std::vector<Index>> colour_classes(const Workspace& ws, const Vertex
   return classes;
 }
 
-bool in_focus(const Workspace& ws, const Tet& c) {
+// Whether a corner of the tet is in focus.
+bool touches_focus(const Workspace& ws, const Tet& c) {
   return std::any_of(c.begin(), c.end(), [&](Index v) { return ws.in_focus(v); });
 }
 
@@ -214,7 +215,7 @@ SwapCounts swap_pass(Workspace& ws) {
   const std::vector<double> energy = tet_energies(ws);
   std::vector<std::pair<double, Index>> bad;
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
-    if (mesh.tet_alive(t) && energy[t] > kWorthSwapping && in_focus(ws, mesh.tet(t)))
+    if (mesh.tet_alive(t) && energy[t] > kWorthSwapping && touches_focus(ws, mesh.tet(t)))
       bad.emplace_back(-energy[t], t);
   }
   std::sort(bad.begin(), bad.end());

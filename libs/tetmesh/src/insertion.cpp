@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <numeric>
 #include <string>
 
 namespace mr::tetmesh {
@@ -109,7 +110,7 @@ void check_budget(std::size_t tets, std::size_t tets_before, std::size_t done, s
 // count.
 std::vector<std::size_t> insertion_order(std::size_t n, bool random) {
   std::vector<std::size_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::iota(order.begin(), order.end(), std::size_t(0));
   if (!random) return order;
   std::uint64_t state = 0x9E3779B97F4A7C15ull;
   for (std::size_t i = n; i > 1; --i) {
