@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <map>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -58,6 +59,15 @@ inline TriangleSoup sphere(double radius, int subdivisions) {
   soup.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
   subdivide_onto_unit_sphere(soup, subdivisions);
   for (Vec3d& p : soup.positions) p *= radius;
+  return soup;
+}
+
+/// Every vertex moved by `amount` in a random direction (seeded).
+inline TriangleSoup jittered(TriangleSoup soup, double amount, unsigned seed) {
+  std::mt19937 random(seed);
+  std::normal_distribution<double> normal;
+  for (Vec3d& p : soup.positions)
+    p += amount * Vec3d(normal(random), normal(random), normal(random)).normalized();
   return soup;
 }
 

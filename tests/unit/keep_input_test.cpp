@@ -527,9 +527,25 @@ TEST_CASE("faces meeting others improperly are found exactly", "[spatial][keep]"
 }
 
 TEST_CASE("insertion stops past its tet budget", "[tetrahedralize][keep]") {
+  // Keeping the faces (none is near a defect): max_insertion_tets bounds it.
   tetmesh::PipelineOptions options;
+  options.tetrahedralize.simplify_near_defects_only = true;
   options.tetrahedralize.max_insertion_tets = 10;
-  REQUIRE_THROWS_AS(tetmesh::tetrahedralize(test::sphere(1.0, 2), options), tetmesh::InsertionTooCostly);
+  options.tetrahedralize.max_rebuild_insertion_tets = 0;
+  try {
+    tetmesh::tetrahedralize(test::sphere(1.0, 2), options);
+    FAIL("keeping the faces did not stop at its budget");
+  } catch (const tetmesh::RebuildTooCostly&) {
+    FAIL("keeping the faces stopped as a rebuild");
+  } catch (const tetmesh::InsertionTooCostly&) {
+  }
   options.tetrahedralize.max_insertion_tets = 0;  // no limit
   REQUIRE(!tetmesh::tetrahedralize(test::sphere(1.0, 2), options).mesh.tets.empty());
+
+  // Rebuilding every face: max_rebuild_insertion_tets bounds it, not max_insertion_tets.
+  options.tetrahedralize.simplify_near_defects_only = false;
+  options.tetrahedralize.max_insertion_tets = 10;
+  REQUIRE(!tetmesh::tetrahedralize(test::sphere(1.0, 2), options).mesh.tets.empty());
+  options.tetrahedralize.max_rebuild_insertion_tets = 10;
+  REQUIRE_THROWS_AS(tetmesh::tetrahedralize(test::sphere(1.0, 2), options), tetmesh::RebuildTooCostly);
 }

@@ -568,15 +568,6 @@ TriangleSoup as_soup(const TriangleSoup& welded, unsigned seed, bool defects) {
   return soup;
 }
 
-// Every vertex moved by `amount` in a random direction.
-TriangleSoup jittered(TriangleSoup soup, double amount, unsigned seed) {
-  std::mt19937 random(seed);
-  std::normal_distribution<double> normal;
-  for (Vec3d& p : soup.positions)
-    p += amount * Vec3d(normal(random), normal(random), normal(random)).normalized();
-  return soup;
-}
-
 void require_watertight_glb(const TriangleSoup& input, const std::string& name,
                             const std::vector<std::string>& options = {}) {
   const io::Registry registry = io::make_default_registry();
@@ -619,5 +610,5 @@ TEST_CASE("meshrepair makes a soup with duplicated and flipped triangles waterti
 
 TEST_CASE("meshrepair makes a jittered sphere watertight in GLB", "[repair][e2e][slow]") {
   const TriangleSoup s = sphere(1.0, 4);
-  require_watertight_glb(jittered(s, 0.5e-3 * bounding_box_diagonal(s), 9), "jitter");
+  require_watertight_glb(test::jittered(s, 0.5e-3 * bounding_box_diagonal(s), 9), "jitter");
 }

@@ -37,10 +37,12 @@ tetmesh::PipelineOptions repair_pipeline_options(const tetmesh::TetrahedralizeOp
 namespace {
 
 tetmesh::PipelineOptions kept_input_options(const tetmesh::TetrahedralizeOptions& tetrahedralize,
-                                            int band_rings, std::size_t max_tets) {
+                                            int band_rings, std::size_t max_tets,
+                                            std::size_t max_rebuild_tets) {
   tetmesh::PipelineOptions pipeline = repair_pipeline_options(tetrahedralize, RebuildMode::keep_input);
   pipeline.tetrahedralize.defect_band_rings = band_rings;
   pipeline.tetrahedralize.max_insertion_tets = max_tets;
+  pipeline.tetrahedralize.max_rebuild_insertion_tets = max_rebuild_tets;
   return pipeline;
 }
 
@@ -50,6 +52,7 @@ RepairTets tetrahedralize_for_repair(const TriangleSoup& input,
                                      const tetmesh::TetrahedralizeOptions& tetrahedralize, RebuildMode mode,
                                      const RepairTetsOptions& options) {
   RepairTets tets;
+  const std::size_t rebuild_budget = options.keep_or_nothing ? 0 : options.rebuild_budget;
   if (mode == RebuildMode::keep_input) {
     for (std::size_t i = 0; i < kKeepInputBands.size(); ++i) {
       const bool last = i + 1 == kKeepInputBands.size();
@@ -59,10 +62,13 @@ RepairTets tetrahedralize_for_repair(const TriangleSoup& input,
       const auto start = std::chrono::steady_clock::now();
       try {
         tets.pipeline = tetmesh::tetrahedralize(
-            input, kept_input_options(tetrahedralize, kKeepInputBands[i], budget), options.logger);
+            input, kept_input_options(tetrahedralize, kKeepInputBands[i], budget, rebuild_budget),
+            options.logger);
         tets.mode = RebuildMode::keep_input;
         tets.band_rings = kKeepInputBands[i];
         return tets;
+      } catch (const tetmesh::RebuildTooCostly&) {
+        throw;  // the band held every face: the rebuild would run the same insertion
       } catch (const tetmesh::InsertionTooCostly& e) {
         tets.seconds_gave_way +=
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -75,8 +81,9 @@ RepairTets tetrahedralize_for_repair(const TriangleSoup& input,
       }
     }
   }
-  tets.pipeline = tetmesh::tetrahedralize(input, repair_pipeline_options(tetrahedralize, RebuildMode::remesh),
-                                          options.logger);
+  tetmesh::PipelineOptions rebuild = repair_pipeline_options(tetrahedralize, RebuildMode::remesh);
+  rebuild.tetrahedralize.max_rebuild_insertion_tets = rebuild_budget;
+  tets.pipeline = tetmesh::tetrahedralize(input, rebuild, options.logger);
   return tets;
 }
 

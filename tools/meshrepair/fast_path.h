@@ -45,6 +45,18 @@ inline constexpr std::size_t kKeepInputMaxFaces = 50'000;
 /// Generic_Twin (6.1M tets after 160 of its 19,670 triangles) are rebuilt.
 inline std::size_t keep_input_tet_budget(std::size_t faces) { return 64 * faces + 100'000; }
 
+/// The tets rebuilding every face of an input of `faces` faces may grow
+/// insertion to before meshrepair takes the outer hull instead: beyond
+/// that, insertion and the stages after it take minutes and gigabytes
+/// (manifold/Offset1 with every vertex jittered by epsilon/2: 3.3M tets,
+/// 215 s). The hull gives up being within epsilon, so the budget leaves
+/// room for inputs that take long but finish: trimesh/cycloidal (43,368
+/// faces, 4.0M tets, 216 s) stays exact; with 16 tets a face it went to
+/// the hull, 11 epsilons off, in 124 s. 1.5M tets sent trimesh/boolean's
+/// jittered and overlapping members (1.6M, 1.7M tets, 25 and 29 s exact)
+/// to the hull in 47 and 39 s: reaching the budget is most of its cost.
+inline std::size_t rebuild_tet_budget(std::size_t faces) { return 2'000'000 + 64 * faces; }
+
 /// Vertex rings around defects that keeping the input simplifies before
 /// insertion, narrowest first. The narrowest keeps every triangle that is not
 /// itself a defect; where its insertion grows past the tet budget (long
@@ -71,6 +83,9 @@ struct RepairTetsOptions {
   bool keep_or_nothing = false;
   /// Tets a band's insertion may grow to (0: keep_input_tet_budget of the input).
   std::size_t tet_budget = 0;
+  /// Tets rebuilding every face may grow insertion to before it throws
+  /// tetmesh::RebuildTooCostly (0: no limit). keep_or_nothing lifts it.
+  std::size_t rebuild_budget = 0;
   tetmesh::Logger logger;
   /// Told, as it happens, why a band gave way and what comes next (may be empty).
   std::function<void(const std::string& why, const std::string& next)> on_give_way;
@@ -88,6 +103,7 @@ struct RepairTets {
 /// The pipeline in `mode`. Keeping the input tries the bands of
 /// kKeepInputBands in turn, each within keep_input_tet_budget, and gives way
 /// to rebuilding (mode remesh) when none fits, unless keep_or_nothing.
+/// Throws tetmesh::RebuildTooCostly past options.rebuild_budget.
 RepairTets tetrahedralize_for_repair(const TriangleSoup& input,
                                      const tetmesh::TetrahedralizeOptions& tetrahedralize, RebuildMode mode,
                                      const RepairTetsOptions& options);

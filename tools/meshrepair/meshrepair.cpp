@@ -2,6 +2,7 @@
 #include "fast_path.h"
 #include "holes_only_repair.h"
 #include "memory_budget.h"
+#include "outer_hull_path.h"
 #include "provenance_output.h"
 #include "repair_stats.h"
 #include "surface_input.h"
@@ -21,6 +22,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <ostream>
 
@@ -32,7 +34,8 @@ struct ToolOptions {
   io::WriteOptions write;
   std::optional<int> draco_position_bits;  ///< unset: chosen from epsilon
   bool cleanup = true;
-  std::optional<RebuildMode> rebuild;  ///< --remesh, --keep-input; unset: by the input's size
+  std::optional<RebuildMode> rebuild;         ///< --remesh, --keep-input; unset: by the input's size
+  std::optional<std::size_t> rebuild_budget;  ///< --max-tets; unset: rebuild_tet_budget of the input
   std::string stats_path;
   std::string provenance_path;
   bool source_faces = false;  ///< --source-faces
@@ -86,6 +89,12 @@ cli::ToolSpec make_spec(ToolOptions& o) {
        "keep the input triangles away from defects at any size (by default only up to 50,000 faces: above, "
        "inserting them unsimplified can take many minutes)",
        [&](const std::string&) { o.rebuild = RebuildMode::keep_input; }},
+      {"--max-tets", "", "N",
+       "tets inserting the rebuilt surface may make before meshrepair rebuilds the outer hull of the input "
+       "on a voxel grid instead, a few epsilons from it (default 2,000,000 plus 64 per input face; 0: never)",
+       [&](const std::string& v) {
+         o.rebuild_budget = cli::parse_int("--max-tets", v, 0, std::numeric_limits<int>::max());
+       }},
       {"--no-cleanup", "", "", "keep the peeled surface as it is (no collapses or flips)",
        [&](const std::string&) { o.cleanup = false; }},
       {"--draco", "", "", "compress GLB/glTF output with KHR_draco_mesh_compression (.drc is always Draco)",
@@ -229,7 +238,8 @@ struct RebuildInput {
   std::string declined;             ///< why the holes-only path declined
   double seconds_holes_only = 0.0;  ///< what finding that out cost
   KeepInputOutcome keep_input;
-  DefectCut cut;  ///< the defects the holes-only path found and could not cut out
+  DefectCut cut;                  ///< the defects the holes-only path found and could not cut out
+  std::optional<OuterHull> hull;  ///< rebuilt instead of the input where that cost too much
 };
 
 // The holes-only path: its holes filled (its local defects cut out), the
@@ -276,6 +286,19 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
   return true;
 }
 
+// The outer hull is rebuilt within the input's epsilon (its box is larger),
+// and it is clean: no budget.
+tetmesh::TetrahedralizeOptions hull_or_input_options(const ToolOptions& options, const RebuildInput& in) {
+  tetmesh::TetrahedralizeOptions tetrahedralize = options.tetrahedralize;
+  if (in.hull) tetrahedralize.epsilon_abs = epsilon_for(in.input, options.tetrahedralize);
+  return tetrahedralize;
+}
+
+std::string hull_phrase(const RebuildInput& in) {
+  if (!in.hull) return "";
+  return "outer hull on voxels of " + std::to_string(in.hull->voxel_size) + ", ";
+}
+
 // Tets, surface repair, the written file and its figures, in `mode` (which
 // becomes remesh where keeping the input costs too much, the reason kept in
 // in.keep_input.abandoned).
@@ -283,14 +306,18 @@ void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
                        const std::vector<std::string>& files, RebuildInput& in, RebuildMode& mode,
                        std::ostream& out, std::ostream& err) {
   const TriangleSoup& input = in.input;
+  const TriangleSoup& surface = in.hull ? in.hull->surface : input;
   RepairTetsOptions tets_options;
   tets_options.keep_or_nothing = options.rebuild == RebuildMode::keep_input;
+  if (!in.hull && outer_hull_available())
+    tets_options.rebuild_budget = options.rebuild_budget.value_or(rebuild_tet_budget(input.triangles.size()));
   tets_options.logger = make_logger(options, err);
   if (!options.quiet)
     tets_options.on_give_way = [&err](const std::string& why, const std::string& next) {
       err << "meshrepair: keeping the input triangles would cost too much (" << why << "); " << next << "\n";
     };
-  const RepairTets tets = tetrahedralize_for_repair(input, options.tetrahedralize, mode, tets_options);
+  const RepairTets tets =
+      tetrahedralize_for_repair(surface, hull_or_input_options(options, in), mode, tets_options);
   const tetmesh::PipelineResult& pipeline = tets.pipeline;
   if (mode != tets.mode) in.keep_input.abandoned = tets.gave_way.back();
   mode = tets.mode;
@@ -304,7 +331,7 @@ void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
       output_grid(registry, files[1], pipeline.parameters.epsilon, options, write_options);
   repair_options.finer_output_grid = finer_output_grid(registry, files[1], options, write_options);
   const repair::RepairResult repaired =
-      repair::repair_surface_from_tets(pipeline.mesh, inside_labels(pipeline), input, repair_options);
+      repair::repair_surface_from_tets(pipeline.mesh, inside_labels(pipeline), surface, repair_options);
   write_on_grid(write_options, repaired.grid);
   if (options.verbose && !options.quiet) {
     for (const repair::StageTime& stage : repaired.stages)
@@ -324,14 +351,38 @@ void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
     cli::write_stats_file(
         options.stats_path,
         make_repair_stats({input, pipeline, repaired, written, provenance.summary, in.seconds_read,
-                           in.seconds_holes_only, seconds_write, in.declined, in.keep_input, in.cut})
+                           in.seconds_holes_only, seconds_write, in.declined, in.keep_input, in.cut,
+                           in.hull ? &*in.hull : nullptr})
             .dump(2));
   if (!options.quiet)
     out << files[0] << ": " << input.triangles.size() << " faces -> " << repaired.surface.triangles.size()
-        << " faces, watertight ("
+        << " faces, watertight (" << hull_phrase(in)
         << repaired.manifold.nonmanifold_edges_found + repaired.manifold.nonmanifold_vertices_found
         << " non-manifold spots resolved, " << kept_phrase(provenance.summary) << ", epsilon "
         << pipeline.parameters.epsilon << ")\n";
+}
+
+// Where rebuilding every face would cost too much (insertion passed its
+// budget), the outer hull of the input is rebuilt instead: always closed,
+// a few epsilons away.
+void rebuild_or_take_hull(const ToolOptions& options, const io::Registry& registry,
+                          const std::vector<std::string>& files, RebuildInput& in, RebuildMode& mode,
+                          std::ostream& out, std::ostream& err) {
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    rebuild_and_write(options, registry, files, in, mode, out, err);
+    return;
+  } catch (const tetmesh::RebuildTooCostly& e) {
+    if (!options.quiet)
+      err << "meshrepair: rebuilding the input would cost too much (" << e.what()
+          << "); rebuilding its outer hull on a voxel grid instead\n";
+    const double seconds_tried = seconds_since(start);
+    in.hull = outer_hull_of(in.input, epsilon_for(in.input, options.tetrahedralize));
+    in.hull->reason = e.what();
+    in.hull->seconds_rebuild_tried = seconds_tried;
+  }
+  mode = RebuildMode::remesh;
+  rebuild_and_write(options, registry, files, in, mode, out, err);
 }
 
 void run(const ToolOptions& options, const std::vector<std::string>& files, std::ostream& out,
@@ -341,7 +392,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   const auto start = std::chrono::steady_clock::now();
   check_file_fits(files[0], options.max_memory);
   const TriangleSoup input = io::read_surface(registry, files[0]);
-  RebuildInput rebuild{input, seconds_since(start), {}, 0.0, {}, {}};
+  RebuildInput rebuild{input, seconds_since(start), {}, 0.0, {}, {}, {}};
   check_faces_fit(files[0], input.num_triangles(), kPipelineBytesPerFace, options.max_memory);
   check_has_area(files[0], input);
   check_output_precision(registry, files[1], input, options);
@@ -351,7 +402,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
   RebuildMode mode = rebuild_mode(input.triangles.size(), options.rebuild);
   const auto start_rebuild = std::chrono::steady_clock::now();
   try {
-    rebuild_and_write(options, registry, files, rebuild, mode, out, err);
+    rebuild_or_take_hull(options, registry, files, rebuild, mode, out, err);
   } catch (const RunError& e) {
     // Faces kept as they are give the clean-up and the rounding to the
     // output's grid less room; the full rebuild always has it. --keep-input
@@ -362,7 +413,7 @@ void run(const ToolOptions& options, const std::vector<std::string>& files, std:
     mode = RebuildMode::remesh;
     rebuild.keep_input.abandoned = e.what();
     rebuild.keep_input.seconds_abandoned = seconds_since(start_rebuild);
-    rebuild_and_write(options, registry, files, rebuild, mode, out, err);
+    rebuild_or_take_hull(options, registry, files, rebuild, mode, out, err);
   }
 }
 

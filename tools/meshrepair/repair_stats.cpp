@@ -98,12 +98,23 @@ nlohmann::json repair_figures(const repair::RepairResult& r) {
           {"rounding_max_move", r.rounding.max_move}};
 }
 
+// Why the outer hull was rebuilt instead of the input, and its grid (null: it was not).
+nlohmann::json hull_figures(const OuterHull* hull) {
+  if (!hull) return nullptr;
+  return {
+      {"reason", hull->reason}, {"voxel_size", hull->voxel_size}, {"faces", hull->surface.triangles.size()}};
+}
+
 nlohmann::json stage_seconds(const RepairRun& run) {
   nlohmann::json stages = nlohmann::json::array();
   stages.push_back({{"name", "read"}, {"seconds", run.seconds_read}});
   stages.push_back({{"name", "hole_fill_tried"}, {"seconds", run.seconds_hole_fill_tried}});
   stages.push_back({{"name", "keep_input_abandoned"}, {"seconds", run.keep_input.seconds_abandoned}});
   stages.push_back({{"name", "keep_input_gave_way"}, {"seconds", run.keep_input.seconds_gave_way}});
+  if (run.hull) {
+    stages.push_back({{"name", "rebuild_too_costly"}, {"seconds", run.hull->seconds_rebuild_tried}});
+    stages.push_back({{"name", "outer_hull"}, {"seconds", run.hull->seconds}});
+  }
   for (const tetmesh::StageStats& s : run.pipeline.stats.stages) {
     nlohmann::json stage = {{"name", s.name}, {"seconds", s.seconds}};
     for (const auto& [key, value] : s.counts) stage["counts"][key] = value;
@@ -130,7 +141,8 @@ nlohmann::json make_repair_stats(const RepairRun& run) {
   const auto start = std::chrono::steady_clock::now();
   nlohmann::json stats = {
       {"memory", memory_figures(run.input)},
-      {"path", "tetrahedralize"},
+      {"path", run.hull ? "outer_hull" : "tetrahedralize"},
+      {"outer_hull", hull_figures(run.hull)},
       {"hole_fill_declined", run.hole_fill_declined},
       {"keep_input_abandoned", run.keep_input.abandoned},
       {"keep_input_band_rings", run.keep_input.band_rings},

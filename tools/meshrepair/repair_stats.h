@@ -3,6 +3,7 @@
 // output (measured independently with mr::check), and time per stage.
 
 #include "holes_only_repair.h"
+#include "outer_hull_path.h"
 #include "surface_output.h"
 
 #include <mr/check/provenance.h>
@@ -39,7 +40,8 @@ struct RepairRun {
   double seconds_write = 0.0;
   std::string hole_fill_declined;  ///< why the holes-only path was not taken
   KeepInputOutcome keep_input;
-  DefectCut defects_cut;  ///< the cut tried before the tets (declined)
+  DefectCut defects_cut;            ///< the cut tried before the tets (declined)
+  const OuterHull* hull = nullptr;  ///< rebuilt instead of the input (null: the input was)
 };
 
 nlohmann::json make_repair_stats(const RepairRun& run);

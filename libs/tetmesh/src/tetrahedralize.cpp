@@ -77,12 +77,17 @@ Simplified simplified_input(const TriangleSoup& input, const PipelineOptions& op
 }
 
 // The insertion budget (max_insertion_tets) bounds what keeping the faces
-// away from defects unsimplified costs. Where every face is near a defect
-// none is kept out of the simplification, and the insertion is the one a
-// full rebuild would run: it runs unbounded rather than be redone.
+// away from defects unsimplified costs. Where every face was simplified
+// (no face kept, or every face near a defect), the insertion is the one a
+// full rebuild would run: max_rebuild_insertion_tets bounds it instead.
+bool rebuilds_every_face(const PipelineOptions& options, const Simplified& simplified) {
+  return !options.tetrahedralize.simplify_near_defects_only || simplified.every_face_near_defects;
+}
+
 PipelineOptions budget_applied(const PipelineOptions& options, const Simplified& simplified) {
   PipelineOptions applied = options;
-  if (simplified.every_face_near_defects) applied.tetrahedralize.max_insertion_tets = 0;
+  if (rebuilds_every_face(options, simplified))
+    applied.tetrahedralize.max_insertion_tets = options.tetrahedralize.max_rebuild_insertion_tets;
   return applied;
 }
 
@@ -431,8 +436,15 @@ PipelineResult run(const TriangleSoup& input, const PipelineOptions& options, Pi
   const std::unique_ptr<envelope::Envelope> open_boundary = open_boundary_envelope(input, derived);
   const std::unique_ptr<envelope::Envelope> improving =
       options.improve ? improvement_envelope(input, derived) : nullptr;
-  EmbeddedSurface embedded = embed_and_improve(simplified, {*envelope, open_boundary.get()}, improving.get(),
-                                               derived, embedding_options, result.stats, logger);
+  EmbeddedSurface embedded = [&] {
+    try {
+      return embed_and_improve(simplified, {*envelope, open_boundary.get()}, improving.get(), derived,
+                               embedding_options, result.stats, logger);
+    } catch (const InsertionTooCostly& e) {
+      if (rebuilds_every_face(options, simplified_result)) throw RebuildTooCostly(e.what());
+      throw;
+    }
+  }();
   Mesh& mesh = embedded.mesh;
   const TriangleSoup& surface = embedded.surface;
   const std::vector<char>& left_out = embedded.left_out;

@@ -72,6 +72,13 @@ class InsertionTooCostly : public RunError {
   using RunError::RunError;
 };
 
+/// Insertion passed TetrahedralizeOptions::max_rebuild_insertion_tets:
+/// rebuilding every face costs too much as well.
+class RebuildTooCostly : public InsertionTooCostly {
+ public:
+  using InsertionTooCostly::InsertionTooCostly;
+};
+
 /// Inserts the triangles of `input` in order; the faces of triangle i are
 /// marked with id i, or with marked_as[i] when it was merged into a polygon.
 /// `input_vertex` maps input vertices to mesh vertices (BackgroundMesh).

@@ -53,10 +53,16 @@ struct TetrahedralizeOptions {
   /// The band simplify_near_defects_only simplifies, in vertex rings around
   /// the defect faces (0: the defect faces only).
   int defect_band_rings = 2;
-  /// Insertion stops with InsertionTooCostly past this many tets (0: never).
-  /// With simplify_near_defects_only it bounds what keeping the faces away
-  /// from defects costs, so it does not apply where every face is near one.
+  /// Insertion stops with InsertionTooCostly past this many tets (0: never)
+  /// where faces are kept unsimplified (simplify_near_defects_only, some
+  /// face away from every defect): it bounds what keeping them costs. A
+  /// rebuild of every face has max_rebuild_insertion_tets instead.
   std::size_t max_insertion_tets = 0;
+  /// The bound of an insertion that rebuilds every face (none kept, or a
+  /// band around defects that holds every face), in tets (0: never).
+  /// Passing it throws RebuildTooCostly: meshrepair then takes the outer
+  /// hull instead (docs/ARCHITECTURE.md, "Repair").
+  std::size_t max_rebuild_insertion_tets = 0;
   /// Worker threads; 0 means all hardware threads.
   int threads = 0;
 };
