@@ -11,8 +11,13 @@
 #include <mr/cli/run_tool.h>
 #include <mr/core/errors.h>
 #include <mr/repair/repair.h>
+#include <mr/tetmesh/insertion.h>
 #include <mr/tetmesh/tetrahedralize.h>
+#include <outer_hull_path.h>
 
+#include <pybind11/stl.h>
+
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -24,13 +29,20 @@ struct RepairArgs {
   tetmesh::TetrahedralizeOptions tetrahedralize = tools::repair_defaults();
   bool remesh = false;
   bool cleanup = true;
+  /// Tets the rebuild of every face may make before the outer hull is
+  /// rebuilt instead (unset: tools::rebuild_tet_budget; 0: never).
+  std::optional<std::size_t> max_tets;
   CoordinateGrid grid = CoordinateGrid::doubles();
 };
 
 // Fast path of the tetrahedralization, then the boundary of the kept tets
 // made manifold, peeled and cleaned up inside the envelope of the input.
-TriangleSoup rebuild_in_mode(const TriangleSoup& input, const RepairArgs& args, tools::RebuildMode mode) {
-  const tools::RepairTets tets = tools::tetrahedralize_for_repair(input, args.tetrahedralize, mode, {});
+TriangleSoup rebuild_in_mode(const TriangleSoup& input, const RepairArgs& args, tools::RebuildMode mode,
+                             std::size_t rebuild_budget) {
+  tools::RepairTetsOptions tets_options;
+  tets_options.rebuild_budget = rebuild_budget;
+  const tools::RepairTets tets =
+      tools::tetrahedralize_for_repair(input, args.tetrahedralize, mode, tets_options);
   const tetmesh::PipelineResult& pipeline = tets.pipeline;
   repair::RepairOptions repair_options =
       tools::surface_repair_options(pipeline, args.tetrahedralize.threads, args.cleanup, tets.mode);
@@ -40,6 +52,24 @@ TriangleSoup rebuild_in_mode(const TriangleSoup& input, const RepairArgs& args, 
       .surface;
 }
 
+// As the tool does: where rebuilding every face passes its budget, the
+// input's outer hull is rebuilt instead, within the input's epsilon.
+TriangleSoup rebuild_or_take_hull(const TriangleSoup& input, const RepairArgs& args,
+                                  tools::RebuildMode mode) {
+  const std::size_t budget = !tools::outer_hull_available() ? 0
+                             : args.max_tets                ? *args.max_tets
+                                             : tools::rebuild_tet_budget(input.triangles.size());
+  try {
+    return rebuild_in_mode(input, args, mode, budget);
+  } catch (const tetmesh::RebuildTooCostly&) {
+  }
+  const double epsilon = tools::epsilon_for(input, args.tetrahedralize);
+  RepairArgs hull_args = args;
+  hull_args.tetrahedralize.epsilon_abs = epsilon;
+  return rebuild_in_mode(tools::outer_hull_of(input, epsilon).surface, hull_args, tools::RebuildMode::remesh,
+                         0);
+}
+
 // As the tool does: a failure of the kept-input run (the rounding to the
 // grid finding no place beside kept faces) gives way to the full rebuild,
 // which always has that room.
@@ -47,10 +77,10 @@ TriangleSoup rebuild_through_tets(const TriangleSoup& input, const RepairArgs& a
   const tools::RebuildMode mode = tools::rebuild_mode(
       input.triangles.size(), args.remesh ? std::optional(tools::RebuildMode::remesh) : std::nullopt);
   try {
-    return rebuild_in_mode(input, args, mode);
+    return rebuild_or_take_hull(input, args, mode);
   } catch (const RunError&) {
     if (mode != tools::RebuildMode::keep_input) throw;
-    return rebuild_in_mode(input, args, tools::RebuildMode::remesh);
+    return rebuild_or_take_hull(input, args, tools::RebuildMode::remesh);
   }
 }
 
@@ -90,6 +120,9 @@ Args:
     remesh: rebuild and simplify the whole surface through the tet mesh, even
         when holes are its only defect.
     cleanup: collapse and flip edges of the peeled surface inside the envelope.
+    max_tets: tets rebuilding every face may make before the input's outer
+        hull on a voxel grid, a few epsilons from it, is rebuilt instead
+        (None: 2,000,000 plus 64 per input face; 0: never).
     grid: "float64", or "float32" for positions that stay watertight once
         written as float32 (STL, GLB).
     threads: worker threads; 0 uses all hardware threads.
@@ -109,8 +142,8 @@ void bind_repair(py::module_& m) {
   m.def(
       "repair",
       [](const ArrayLike& vertices, const ArrayLike& faces, double epsilon, double epsilon_abs,
-         double lattice, double snap, bool skip_simplify, bool remesh, bool cleanup, const std::string& grid,
-         int threads) {
+         double lattice, double snap, bool skip_simplify, bool remesh, bool cleanup,
+         std::optional<std::int64_t> max_tets, const std::string& grid, int threads) {
         const TriangleSoup input = soup_from_arrays(vertices, faces);
         RepairArgs args;
         args.tetrahedralize.epsilon_rel = epsilon;
@@ -121,6 +154,10 @@ void bind_repair(py::module_& m) {
         args.tetrahedralize.threads = checked_threads(threads);
         args.remesh = remesh;
         args.cleanup = cleanup;
+        if (max_tets) {
+          if (*max_tets < 0) throw py::value_error("max_tets must be 0 or more");
+          args.max_tets = static_cast<std::size_t>(*max_tets);
+        }
         args.grid = grid_named(grid);
         const TriangleSoup output = without_gil([&] {
           TriangleSoup surface;
@@ -135,7 +172,7 @@ void bind_repair(py::module_& m) {
       py::arg("lattice") = d.tetrahedralize.lattice_spacing_rel,
       py::arg("snap") = d.tetrahedralize.snap_fraction,
       py::arg("skip_simplify") = d.tetrahedralize.skip_simplify, py::arg("remesh") = d.remesh,
-      py::arg("cleanup") = d.cleanup, py::arg("grid") = "float64",
+      py::arg("cleanup") = d.cleanup, py::arg("max_tets") = py::none(), py::arg("grid") = "float64",
       py::arg("threads") = d.tetrahedralize.threads);
 }
 

@@ -77,6 +77,19 @@ def test_repair_cuts_a_fold_out_and_keeps_every_face_away_from_it():
     assert corner_sets(vertices, faces[far]) <= corner_sets(out_vertices, out_faces)
 
 
+def test_repair_takes_the_outer_hull_past_its_tet_budget(cube):
+    vertices, faces = cube
+    two = np.concatenate([vertices, vertices + 0.5]), np.concatenate([faces, faces + len(vertices)])
+    exact = meshrepair.repair(*two, remesh=True, max_tets=0)
+    assert_watertight(*exact)
+    assert signed_volume(*exact) == pytest.approx(2.0 - 0.125, abs=1e-2)
+    hull = meshrepair.repair(*two, remesh=True, max_tets=1)
+    assert_watertight(*hull)
+    # The union grown by about a voxel (at most 1.5/96 here) on every side.
+    assert 2.0 - 0.125 < signed_volume(*hull) < 2.0 - 0.125 + 10 * 2 * 1.5 / 96
+    assert not np.array_equal(exact[1], hull[1])
+
+
 def test_repair_accepts_float32_and_strided_arrays(cube):
     vertices, faces = cube
     strided = np.asfortranarray(vertices.astype(np.float32))
@@ -273,6 +286,8 @@ def test_bad_options_raise(cube):
         meshrepair.repair(*cube, threads=-1)
     with pytest.raises(ValueError, match="grid must be"):
         meshrepair.repair(*cube, grid="float16")
+    with pytest.raises(ValueError, match="max_tets"):
+        meshrepair.repair(*cube, max_tets=-1)
     with pytest.raises(ValueError, match="epsilon"):
         meshrepair.tetrahedralize(*cube, epsilon=-1.0)
     with pytest.raises(ValueError, match="density"):
