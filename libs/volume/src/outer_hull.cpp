@@ -188,6 +188,24 @@ FloatGrid::Ptr hull_level_set(const FloatGrid& band, const DenseBox& box,
   return level_set;
 }
 
+// The walls closed the solid a wall radius out; the signed distance to its
+// surface lets that surface move back toward the soup (a closing). The
+// distance is to the meshed surface, the sign the level set's: OpenVDB's
+// own rebuild signs by reachability from outside and would fill cavities.
+FloatGrid::Ptr signed_distance_to(const std::vector<openvdb::Vec3s>& points,
+                                  const std::vector<openvdb::Vec3I>& triangles,
+                                  const std::vector<openvdb::Vec4I>& quads, const FloatGrid& level_set,
+                                  double half_width) {
+  FloatGrid::Ptr distance = openvdb::tools::meshToUnsignedDistanceField<FloatGrid>(
+      level_set.transform(), points, triangles, quads, static_cast<float>(half_width));
+  const auto sign = level_set.getConstAccessor();
+  for (auto it = distance->beginValueOn(); it; ++it)
+    if (sign.getValue(it.getCoord()) < 0.0f) it.setValue(-*it);
+  distance->setGridClass(openvdb::GRID_LEVEL_SET);
+  openvdb::tools::signedFloodFill(distance->tree());
+  return distance;
+}
+
 // volumeToMesh winds polygons clockwise seen from outside; the soup's
 // triangles turn counter-clockwise. Quads split along the shorter diagonal.
 TriangleSoup to_soup(const std::vector<openvdb::Vec3s>& points, const std::vector<openvdb::Vec3I>& triangles,
@@ -218,6 +236,8 @@ TriangleSoup outer_hull(const TriangleSoup& soup, const OuterHullOptions& option
     throw UsageError("the outer hull's voxel size must be a positive number");
   if (!(options.wall_radius >= std::sqrt(3.0) / 2.0))
     throw UsageError("the outer hull's wall radius must be at least sqrt(3)/2 voxels");
+  if (!(options.closing >= 0.0 && options.closing <= options.wall_radius - 0.5))
+    throw UsageError("the outer hull's closing must be between 0 and its wall radius less half a voxel");
   if (soup.triangles.empty()) return {};
   const Vec3d origin = used_bounding_box(soup).min();
   const auto xform = openvdb::math::Transform::createLinearTransform(options.voxel_size);
@@ -235,7 +255,16 @@ TriangleSoup outer_hull(const TriangleSoup& soup, const OuterHullOptions& option
   std::vector<openvdb::Vec3s> points;
   std::vector<openvdb::Vec3I> triangles;
   std::vector<openvdb::Vec4I> quads;
-  openvdb::tools::volumeToMesh(*level_set, points, triangles, quads, 0.0, options.adaptivity);
+  openvdb::tools::volumeToMesh(*level_set, points, triangles, quads, 0.0, 0.0);
+  if (options.closing > 0.0) {
+    const FloatGrid::Ptr distance = signed_distance_to(points, triangles, quads, *level_set, half_width);
+    points.clear(), triangles.clear(), quads.clear();
+    openvdb::tools::volumeToMesh(*distance, points, triangles, quads, -options.closing * options.voxel_size,
+                                 options.adaptivity);
+  } else if (options.adaptivity > 0.0) {
+    points.clear(), triangles.clear(), quads.clear();
+    openvdb::tools::volumeToMesh(*level_set, points, triangles, quads, 0.0, options.adaptivity);
+  }
   return to_soup(points, triangles, quads, origin);
 }
 

@@ -67,6 +67,26 @@ TEST_CASE("the outer hull of crossing cubes is one solid around their union", "[
   REQUIRE(check::one_sided_distance(soup, hull).max > 0.2);
 }
 
+TEST_CASE("the outer hull's closing brings its surface back toward the soup", "[volume][vdb]") {
+  TriangleSoup soup = test::cube_soup();
+  soup.append(moved(test::cube_soup(), {0.5, 0.5, 0.5}));
+  volume::OuterHullOptions options = hull_options();
+  options.closing = 0.0;
+  const TriangleSoup walls = volume::outer_hull(soup, options);
+  options.closing = 0.5;
+  const TriangleSoup closed = volume::outer_hull(soup, options);
+  require_hull_of(walls, soup);
+  require_hull_of(closed, soup);
+  // One wall radius (a voxel) out, then half a voxel back.
+  const double out = check::one_sided_distance(walls, soup).mean;
+  const double back = check::one_sided_distance(closed, soup).mean;
+  CAPTURE(out / kVoxel, back / kVoxel);
+  REQUIRE(out > 0.8 * kVoxel);
+  REQUIRE(back < 0.7 * kVoxel);
+  options.closing = 0.6;  // more than wall radius less half a voxel
+  REQUIRE_THROWS_AS(volume::outer_hull(soup, options), UsageError);
+}
+
 TEST_CASE("the outer hull keeps a hollow solid's cavity and fills an inward one", "[volume][vdb]") {
   const TriangleSoup cavity = turned_inward(test::cube_soup(0.3, 0.7));
   TriangleSoup hollow = test::cube_soup();

@@ -19,6 +19,11 @@ struct OuterHullOptions {
   /// voxels. At least sqrt(3)/2, so that the walls around a triangle leave
   /// no gap a path between voxel centres could pass.
   double wall_radius = 1.0;
+  /// How far the surface moves back toward the soup once the walls have
+  /// closed the solid, in voxels (a morphological closing), at most
+  /// wall_radius - 1/2: what the walls made thinner than a voxel keeps a
+  /// voxel's thickness.
+  double closing = 0.5;
   /// 0: one quad per crossed voxel edge, up to 1: as few as OpenVDB can.
   double adaptivity = 0.0;
 };
