@@ -56,18 +56,15 @@ TriangleSoup rebuild_in_mode(const TriangleSoup& input, const RepairArgs& args, 
 // input's outer hull is rebuilt instead, within the input's epsilon.
 TriangleSoup rebuild_or_take_hull(const TriangleSoup& input, const RepairArgs& args,
                                   tools::RebuildMode mode) {
-  const std::size_t budget = !tools::outer_hull_available() ? 0
-                             : args.max_tets                ? *args.max_tets
-                                             : tools::rebuild_tet_budget(input.triangles.size());
   try {
-    return rebuild_in_mode(input, args, mode, budget);
+    return rebuild_in_mode(input, args, mode,
+                           tools::rebuild_budget_for(input.triangles.size(), args.max_tets));
   } catch (const tetmesh::RebuildTooCostly&) {
   }
-  const double epsilon = tools::epsilon_for(input, args.tetrahedralize);
   RepairArgs hull_args = args;
-  hull_args.tetrahedralize.epsilon_abs = epsilon;
-  return rebuild_in_mode(tools::outer_hull_of(input, epsilon).surface, hull_args, tools::RebuildMode::remesh,
-                         0);
+  hull_args.tetrahedralize = tools::hull_rebuild_options(args.tetrahedralize, input);
+  const TriangleSoup hull = tools::outer_hull_of(input, hull_args.tetrahedralize.epsilon_abs).surface;
+  return rebuild_in_mode(hull, hull_args, tools::RebuildMode::remesh, 0);
 }
 
 // As the tool does: a failure of the kept-input run (the rounding to the

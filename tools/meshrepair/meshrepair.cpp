@@ -286,12 +286,9 @@ bool try_holes_only(const ToolOptions& options, const io::Registry& registry,
   return true;
 }
 
-// The outer hull is rebuilt within the input's epsilon (its box is larger),
-// and it is clean: no budget.
+// The outer hull is rebuilt within the input's epsilon, and it is clean: no budget.
 tetmesh::TetrahedralizeOptions hull_or_input_options(const ToolOptions& options, const RebuildInput& in) {
-  tetmesh::TetrahedralizeOptions tetrahedralize = options.tetrahedralize;
-  if (in.hull) tetrahedralize.epsilon_abs = epsilon_for(in.input, options.tetrahedralize);
-  return tetrahedralize;
+  return in.hull ? hull_rebuild_options(options.tetrahedralize, in.input) : options.tetrahedralize;
 }
 
 std::string hull_phrase(const RebuildInput& in) {
@@ -309,8 +306,8 @@ void rebuild_and_write(const ToolOptions& options, const io::Registry& registry,
   const TriangleSoup& surface = in.hull ? in.hull->surface : input;
   RepairTetsOptions tets_options;
   tets_options.keep_or_nothing = options.rebuild == RebuildMode::keep_input;
-  if (!in.hull && outer_hull_available())
-    tets_options.rebuild_budget = options.rebuild_budget.value_or(rebuild_tet_budget(input.triangles.size()));
+  if (!in.hull)
+    tets_options.rebuild_budget = rebuild_budget_for(input.triangles.size(), options.rebuild_budget);
   tets_options.logger = make_logger(options, err);
   if (!options.quiet)
     tets_options.on_give_way = [&err](const std::string& why, const std::string& next) {

@@ -1,5 +1,7 @@
 #include "outer_hull_path.h"
 
+#include "fast_path.h"
+
 #include <mr/core/errors.h>
 #if MR_HAVE_OUTER_HULL
 #include <mr/volume/outer_hull.h>
@@ -10,6 +12,18 @@
 #include <cmath>
 
 namespace mr::tools {
+
+std::size_t rebuild_budget_for(std::size_t faces, std::optional<std::size_t> requested) {
+  if (!outer_hull_available()) return 0;
+  return requested.value_or(rebuild_tet_budget(faces));
+}
+
+tetmesh::TetrahedralizeOptions hull_rebuild_options(const tetmesh::TetrahedralizeOptions& tetrahedralize,
+                                                    const TriangleSoup& input) {
+  tetmesh::TetrahedralizeOptions options = tetrahedralize;
+  options.epsilon_abs = epsilon_for(input, tetrahedralize);
+  return options;
+}
 
 #if MR_HAVE_OUTER_HULL
 

@@ -4,7 +4,10 @@
 // voxel grid (mr/volume/outer_hull.h), which the rebuild then meshes.
 
 #include <mr/core/triangle_soup.h>
+#include <mr/tetmesh/options.h>
 
+#include <cstddef>
+#include <optional>
 #include <string>
 
 namespace mr::tools {
@@ -33,6 +36,16 @@ struct OuterHull {
 
 /// Whether this build has the outer hull (OpenVDB).
 bool outer_hull_available();
+
+/// The tet budget of rebuilding every face of an input of `faces` faces:
+/// `requested` (--max-tets, max_tets=) when set, else rebuild_tet_budget;
+/// 0 (no limit) where this build has no hull to fall back on.
+std::size_t rebuild_budget_for(std::size_t faces, std::optional<std::size_t> requested);
+
+/// The options rebuilding the hull of `input` runs with: the input's
+/// epsilon (the hull's box is larger), made absolute.
+tetmesh::TetrahedralizeOptions hull_rebuild_options(const tetmesh::TetrahedralizeOptions& tetrahedralize,
+                                                    const TriangleSoup& input);
 
 /// The hull of `input` with voxels of kHullVoxelsASide along its longest
 /// side, but not below epsilon/2 (finer would not bring it within epsilon),

@@ -188,16 +188,26 @@ FloatGrid::Ptr hull_level_set(const FloatGrid& band, const DenseBox& box,
   return level_set;
 }
 
+struct Polygons {
+  std::vector<openvdb::Vec3s> points;
+  std::vector<openvdb::Vec3I> triangles;
+  std::vector<openvdb::Vec4I> quads;
+};
+
+Polygons mesh_level(const FloatGrid& grid, double isovalue, double adaptivity) {
+  Polygons mesh;
+  openvdb::tools::volumeToMesh(grid, mesh.points, mesh.triangles, mesh.quads, isovalue, adaptivity);
+  return mesh;
+}
+
 // The walls closed the solid a wall radius out; the signed distance to its
 // surface lets that surface move back toward the soup (a closing). The
 // distance is to the meshed surface, the sign the level set's: OpenVDB's
 // own rebuild signs by reachability from outside and would fill cavities.
-FloatGrid::Ptr signed_distance_to(const std::vector<openvdb::Vec3s>& points,
-                                  const std::vector<openvdb::Vec3I>& triangles,
-                                  const std::vector<openvdb::Vec4I>& quads, const FloatGrid& level_set,
-                                  double half_width) {
+FloatGrid::Ptr signed_distance_to(const Polygons& surface, const FloatGrid& level_set, double half_width) {
   FloatGrid::Ptr distance = openvdb::tools::meshToUnsignedDistanceField<FloatGrid>(
-      level_set.transform(), points, triangles, quads, static_cast<float>(half_width));
+      level_set.transform(), surface.points, surface.triangles, surface.quads,
+      static_cast<float>(half_width));
   const auto sign = level_set.getConstAccessor();
   for (auto it = distance->beginValueOn(); it; ++it)
     if (sign.getValue(it.getCoord()) < 0.0f) it.setValue(-*it);
@@ -208,8 +218,8 @@ FloatGrid::Ptr signed_distance_to(const std::vector<openvdb::Vec3s>& points,
 
 // volumeToMesh winds polygons clockwise seen from outside; the soup's
 // triangles turn counter-clockwise. Quads split along the shorter diagonal.
-TriangleSoup to_soup(const std::vector<openvdb::Vec3s>& points, const std::vector<openvdb::Vec3I>& triangles,
-                     const std::vector<openvdb::Vec4I>& quads, const Vec3d& origin) {
+TriangleSoup to_soup(const Polygons& mesh, const Vec3d& origin) {
+  const auto& [points, triangles, quads] = mesh;
   TriangleSoup soup;
   soup.positions.reserve(points.size());
   for (const openvdb::Vec3s& p : points) soup.positions.push_back(origin + Vec3d(p.x(), p.y(), p.z()));
@@ -252,20 +262,10 @@ TriangleSoup outer_hull(const TriangleSoup& soup, const OuterHullOptions& option
   const WindingNumberTree winding(soup);
   const FloatGrid::Ptr level_set =
       hull_level_set(*band, box, classify(*band, box, wall, winding, origin), wall, voxel);
-  std::vector<openvdb::Vec3s> points;
-  std::vector<openvdb::Vec3I> triangles;
-  std::vector<openvdb::Vec4I> quads;
-  openvdb::tools::volumeToMesh(*level_set, points, triangles, quads, 0.0, 0.0);
-  if (options.closing > 0.0) {
-    const FloatGrid::Ptr distance = signed_distance_to(points, triangles, quads, *level_set, half_width);
-    points.clear(), triangles.clear(), quads.clear();
-    openvdb::tools::volumeToMesh(*distance, points, triangles, quads, -options.closing * options.voxel_size,
-                                 options.adaptivity);
-  } else if (options.adaptivity > 0.0) {
-    points.clear(), triangles.clear(), quads.clear();
-    openvdb::tools::volumeToMesh(*level_set, points, triangles, quads, 0.0, options.adaptivity);
-  }
-  return to_soup(points, triangles, quads, origin);
+  if (options.closing == 0.0) return to_soup(mesh_level(*level_set, 0.0, options.adaptivity), origin);
+  const FloatGrid::Ptr distance =
+      signed_distance_to(mesh_level(*level_set, 0.0, 0.0), *level_set, half_width);
+  return to_soup(mesh_level(*distance, -options.closing * options.voxel_size, options.adaptivity), origin);
 }
 
 }  // namespace mr::volume
