@@ -233,6 +233,45 @@ TEST_CASE("improve: passes that end above the stop energy are polished without s
   CHECK(surface.ids.size() == 12);
 }
 
+TEST_CASE("improve: the tets left above the stop energy are reported worst first, by their freest corner",
+          "[improve]") {
+  Fixture fixture;
+  ImproveOptions options = options_with_threads(2);
+  options.stop_energy = 3.01;  // out of reach: every tet stays above it
+  options.max_passes = 2;
+  const ImproveStats stats = improve_mesh(fixture.mesh, *fixture.envelope, options);
+  std::size_t above = 0;
+  for (Index t = 0; t < fixture.mesh.tet_slots(); ++t) {
+    if (!fixture.mesh.tet_alive(t)) continue;
+    const Tet& c = fixture.mesh.tet(t);
+    const auto at = [&](int i) { return fixture.mesh.position(c[i]).approx; };
+    above += check::amips_energy(at(0), at(1), at(2), at(3)) >= options.stop_energy;
+  }
+  const StuckReport& stuck = stats.stuck;
+  CHECK(stuck.tets == above);
+  CHECK(stuck.free + stuck.sliding + stuck.creased + stuck.fixed == stuck.tets);
+  CHECK(stuck.free > 0);     // tets inside the cube
+  CHECK(stuck.sliding > 0);  // tets on a cube face, with no corner inside
+  REQUIRE(stuck.worst.size() == 10);
+  CHECK(stuck.worst.front().amips == stats.after.max_amips);
+  for (std::size_t i = 1; i < stuck.worst.size(); ++i)
+    CHECK(stuck.worst[i].amips <= stuck.worst[i - 1].amips);
+  for (const StuckTet& t : stuck.worst) {
+    CHECK((t.held_by == "free" || t.held_by == "sliding" || t.held_by == "creased" || t.held_by == "fixed"));
+    for (const double x : t.centroid) CHECK((x > kGridLo && x < kGridLo + kGridCells * kGridStep));
+  }
+}
+
+TEST_CASE("improve: tets whose every corner is locked are reported as fixed", "[improve]") {
+  Fixture fixture;
+  for (Index v = 0; v < fixture.mesh.vertex_slots(); ++v) fixture.mesh.add_flags(v, kLocked);
+  ImproveOptions options = options_with_threads(2);
+  options.max_passes = 1;
+  const ImproveStats stats = improve_mesh(fixture.mesh, *fixture.envelope, options);
+  REQUIRE(stats.stuck.tets > 0);  // the damaged fixture's bad tets stay as they are
+  CHECK(stats.stuck.fixed == stats.stuck.tets);
+}
+
 TEST_CASE("improve: splits long edges and collapses short ones towards the target", "[improve][slow]") {
   Fixture fine;
   ImproveOptions coarse = options_with_threads(1);

@@ -464,6 +464,11 @@ TEST_CASE("tetrahedralize tool: writes a valid mesh, stats and the tracked surfa
         j["envelope"]["epsilon"].get<double>());
   CHECK(j["peak_memory_mb"].get<double>() > 0);
   CHECK(j["stages"].size() >= 5);
+  // Where improvement stopped short: counted, and the worst named.
+  const nlohmann::json& stuck = j["stuck_tets"];
+  const auto held = [&](const char* key) { return stuck[key].get<std::size_t>(); };
+  CHECK(held("free") + held("sliding") + held("creased") + held("fixed") == held("tets"));
+  CHECK(stuck["worst"].size() == std::min<std::size_t>(10, held("tets")));
 }
 
 TEST_CASE("tetrahedralize tool: bad input and bad usage exit 2 without output", "[tetrahedralize][tool]") {

@@ -248,6 +248,9 @@ void polish(Workspace& ws, ImproveStats& stats, std::vector<EnergyState>& histor
   }
 }
 
+// How many of the tets left at or above the stop energy the stats name.
+constexpr std::size_t kWorstReported = 10;
+
 // Passes until the largest energy is below the stop energy (and, with a
 // sizing field, the lengths settled). When a pass
 // stalls, the local target shrinks around the bad tets (never two passes in
@@ -297,10 +300,22 @@ ImproveStats run_passes(Mesh& mesh, const SurfaceBounds& bounds, const ImproveOp
   stats.rational_vertices = round_in_place(ws);
   stats.after = measure_quality(mesh);
   stats.written_max_amips = history.back().max;
+  stats.stuck = stuck_report(ws, tet_energies(ws, true), kWorstReported);
   payload = std::move(ws.payload);
   if (!payload.fate.empty()) payload.fate.resize(mesh.tet_slots(), kWritten);
   if (!payload.value.empty()) payload.value.resize(mesh.tet_slots(), 0.0);
   return stats;
+}
+
+std::string stuck_summary(const StuckReport& stuck) {
+  const StuckTet& worst = stuck.worst.front();
+  std::ostringstream text;
+  text << "improve: " << stuck.tets << " tets to be written stay at or above the stop energy: " << stuck.free
+       << " with a corner free to move, " << stuck.sliding << " with every corner on the surface, "
+       << stuck.creased << " on its creases or open boundary, " << stuck.fixed
+       << " with every corner fixed; the worst, AMIPS " << worst.amips << ", at (" << worst.centroid[0]
+       << ", " << worst.centroid[1] << ", " << worst.centroid[2] << ")";
+  return text.str();
 }
 
 }  // namespace
@@ -365,6 +380,7 @@ ImproveStats improve_mesh(Mesh& mesh, const SurfaceBounds& bounds, const Improve
          << " to " << stats.written_max_amips;
   }
   logger.log(LogLevel::info, text.str());
+  if (stats.stuck.tets > 0) logger.log(LogLevel::info, stuck_summary(stats.stuck));
   if (options.sizing != nullptr) {
     std::ostringstream field;
     field

@@ -191,6 +191,12 @@ bool try_face_swap(Workspace& ws, Index t, int f);
 /// Moves v to lower the AMIPS energy of its star (Newton with line search)
 /// within its constraints. `star` are its tets. Touches only v's position.
 bool try_smooth(const Workspace& ws, Index v, std::span<const Index> star);
+/// How freely try_smooth may move vertex v (`star`: its tets), freest first:
+/// anywhere; within the tracked surface's tangent plane or its box face(s);
+/// only where its tets are bad, back onto its input triangles (a crease or
+/// an open boundary of one sheet, StuckReport::creased); not at all.
+enum class Mobility : std::uint8_t { free, sliding, creased, fixed };
+Mobility mobility(const Workspace& ws, Index v, std::span<const Index> star);
 /// Moves a rational vertex to a nearby double position keeping its star
 /// positive and its tracked faces in the envelope.
 bool try_relocate(const Workspace& ws, Index v, std::span<const Index> star);
@@ -214,6 +220,10 @@ struct SizingUpdate {
 /// grow back elsewhere, within [min_scale, 1].
 SizingUpdate update_sizing(Workspace& ws, std::span<const double> energy, double max_energy,
                            double min_scale);
+/// The tets that drive (Workspace::drives) at or above the stop energy,
+/// counted by the freest of their corners, and the `worst` worst of them.
+/// `energy`: per tet slot, as tet_energies(ws, true) gives.
+StuckReport stuck_report(Workspace& ws, std::span<const double> energy, std::size_t worst);
 /// Energy of every live tet slot that counts, or with `driving_only` that
 /// drives (0 for the others), in parallel.
 std::vector<double> tet_energies(const Workspace& ws, bool driving_only = false);

@@ -322,6 +322,14 @@ bool try_smooth(const Workspace& ws, Index v, std::span<const Index> star) {
   return false;
 }
 
+Mobility mobility(const Workspace& ws, Index v, std::span<const Index> star) {
+  const Freedom freedom = freedom_of(ws.mesh, v, star);
+  if (freedom.fixed) return releasable(ws, freedom) ? Mobility::creased : Mobility::fixed;
+  const bool on_box =
+      std::find(freedom.frozen_axis.begin(), freedom.frozen_axis.end(), true) != freedom.frozen_axis.end();
+  return freedom.tangent || on_box ? Mobility::sliding : Mobility::free;
+}
+
 bool try_relocate(const Workspace& ws, Index v, std::span<const Index> star) {
   const Freedom freedom = freedom_of(ws.mesh, v, star);
   // A creased vertex (on a feature or on the crossing of two input

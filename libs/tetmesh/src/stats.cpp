@@ -29,6 +29,24 @@ std::string to_json(const PipelineStats& stats) {
     for (const auto& [key, value] : s.counts) stage["counts"][key] = value;
     root["stages"].push_back(std::move(stage));
   }
+  if (stats.stuck) {
+    const StuckReport& stuck = *stats.stuck;
+    nlohmann::ordered_json out;
+    out["tets"] = stuck.tets;
+    out["free"] = stuck.free;
+    out["sliding"] = stuck.sliding;
+    out["creased"] = stuck.creased;
+    out["fixed"] = stuck.fixed;
+    out["worst"] = nlohmann::ordered_json::array();
+    for (const StuckTet& t : stuck.worst) {
+      nlohmann::ordered_json tet;
+      tet["amips"] = t.amips;
+      tet["centroid"] = t.centroid;
+      tet["held_by"] = t.held_by;
+      out["worst"].push_back(std::move(tet));
+    }
+    root["stuck_tets"] = std::move(out);
+  }
   root["total_seconds"] = stats.total_seconds();
   return root.dump(2);
 }

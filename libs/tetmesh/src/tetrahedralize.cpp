@@ -267,6 +267,7 @@ detail::CarriedDecision improve(Mesh& mesh, const SurfaceBounds& bounds, std::sp
   timer.count("collapses", improved.collapses);
   timer.count("swaps", improved.swaps_32 + improved.swaps_23 + improved.swaps_44 + improved.edge_removals);
   timer.count("smoothing_moves", improved.smoothing_moves);
+  stats.stuck = improved.stuck;
   if (options.sizing != nullptr) {
     timer.count("sizing_field_outside", improved.sizing_outside);
     timer.count("sizing_field_clamped", improved.sizing_clamped);

@@ -18,6 +18,7 @@
 #include <mr/envelope/envelope.h>
 #include <mr/tetmesh/logger.h>
 #include <mr/tetmesh/mesh.h>
+#include <mr/tetmesh/stats.h>
 
 #include <cstddef>
 #include <vector>
@@ -96,6 +97,8 @@ struct ImproveStats {
   /// no fates were given, TetPayload).
   double written_max_amips = 0.0;
   std::size_t rational_vertices = 0;  ///< live vertices still rational at the end
+  /// The kWritten tets left at or above the stop energy, and what holds them.
+  StuckReport stuck;
 };
 
 struct RoundingStats {

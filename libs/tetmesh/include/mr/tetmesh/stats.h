@@ -4,9 +4,11 @@
 
 #include <mr/tetmesh/logger.h>
 
+#include <array>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,8 +24,35 @@ struct StageStats {
   void count(std::string key, std::int64_t value) { counts.emplace_back(std::move(key), value); }
 };
 
+/// A written tet that improvement left at or above the stop energy.
+struct StuckTet {
+  double amips = 0.0;
+  std::array<double, 3> centroid{};
+  std::string held_by;  ///< "free", "sliding", "creased" or "fixed" (StuckReport)
+};
+
+/// The written tets improvement left at or above the stop energy, each
+/// counted by the freest of its corners: where the target was not reached,
+/// and what held the operations back there.
+struct StuckReport {
+  std::size_t tets = 0;
+  /// A corner may move anywhere: no operation found a better mesh.
+  std::size_t free = 0;
+  /// Every corner on the tracked surface or the box, some sliding along it.
+  std::size_t sliding = 0;
+  /// Every corner on a crease or an open boundary, moving only where its
+  /// tets are bad (a crease's vertices stay on their input triangles).
+  std::size_t creased = 0;
+  /// No corner may move: on the input's open boundary, where parts meet or
+  /// cross, on a box edge, or locked.
+  std::size_t fixed = 0;
+  std::vector<StuckTet> worst;  ///< the worst few, worst first
+};
+
 struct PipelineStats {
   std::vector<StageStats> stages;
+  /// Filled when the pipeline improved the mesh.
+  std::optional<StuckReport> stuck;
 
   /// The stage named `name`, appended if absent.
   StageStats& stage(const std::string& name);
@@ -31,6 +60,8 @@ struct PipelineStats {
 };
 
 /// {"stages": [{"name": ..., "seconds": ..., "counts": {...}}, ...],
+///  "stuck_tets": {"tets": ..., "free": ..., ..., "worst": [{"amips": ...,
+///  "centroid": [x, y, z], "held_by": ...}, ...]} (when improved),
 ///  "total_seconds": ...}, indented by 2.
 std::string to_json(const PipelineStats& stats);
 
