@@ -359,3 +359,37 @@ TEST_CASE("insertion: a run on course for four times its tet budget stops early"
   CHECK(tets_at_stop > 0);
   CHECK(tets_at_stop <= options.max_tets);
 }
+
+TEST_CASE("insertion: a run on course for 32 times its tet budget stops after its first 8 triangles",
+          "[tetmesh][insertion]") {
+  // 4000 pages in 9 piles, 4 times as dense as above: each of the first
+  // cuts thousands of tets, so 8 tell that the run would end far past the
+  // budget, long before the 32 the milder projection waits for.
+  TriangleSoup book;
+  constexpr int kPages = 4000;
+  for (int i = 0; i < kPages; ++i) {
+    const double x = 0.35 * (i % 3), y = 0.35 * ((i / 3) % 3), z = double(i) / kPages;
+    const auto first = static_cast<Index>(book.positions.size());
+    book.positions.insert(book.positions.end(), {{x, y, z}, {x + 0.3, y, z}, {x, y + 0.3, z}});
+    book.triangles.push_back({first, Index(first + 1), Index(first + 2)});
+  }
+  const DerivedParameters derived = derive_parameters({}, book);
+  BackgroundMesh background =
+      build_background_mesh(book, spatial::AabbTree(book), background_parameters(derived, 1));
+  InsertionOptions options;
+  options.max_tets = 3 * background.mesh.num_tets();
+  std::string stopped;
+  try {
+    insert_triangles(background.mesh, book, background.input_vertex, {}, {}, options);
+  } catch (const InsertionTooCostly& e) {
+    stopped = e.what();
+  }
+  INFO(stopped);
+  CHECK(stopped.find("more than 32 times its budget") != std::string::npos);
+  const std::size_t after = stopped.find(" tets after ");
+  REQUIRE(after != std::string::npos);
+  const int done = std::stoi(stopped.substr(after + 12));
+  CHECK(done >= 8);
+  CHECK(done < 32);  // before the milder projection may speak
+  CHECK(background.mesh.num_tets() <= options.max_tets);
+}
