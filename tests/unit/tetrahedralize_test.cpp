@@ -231,12 +231,12 @@ TriangleSoup book_of_triangles(int pages) {
 
 TEST_CASE("tetrahedralize: stuck cut points are retried on a coarser grid before any triangle is left out",
           "[tetrahedralize][slow]") {
-  // With 4 pages, some cut points on the default grid (2^-20) cannot be
+  // With 8 pages, some cut points on the default grid (2^-20) cannot be
   // rounded; on the grid 16 times coarser every page is embedded.
   tetmesh::PipelineOptions options;
   options.improve = false;
   options.tetrahedralize.skip_simplify = true;
-  const TriangleSoup book = book_of_triangles(4);
+  const TriangleSoup book = book_of_triangles(8);
   const tetmesh::PipelineResult result = tetmesh::tetrahedralize(book, options);
   CHECK(stage_count(result.stats, "snap", "grid_log2") == -16);
   CHECK(stage_count(result.stats, "insertion", "left_out") == 0);

@@ -152,7 +152,8 @@ InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input, std::span
   const detail::CoplanarGrouping grouping = detail::group_coplanar_triangles(
       mesh, triangles, mergeable(triangles, skip, options), detail::TriangleInserter::kMaxCorners);
 
-  detail::TriangleInserter inserter(mesh, options.max_exact_bits, options.snap_distance);
+  detail::TriangleInserter inserter(mesh, options.max_exact_bits, options.snap_distance,
+                                    options.settle_cut_points);
   Copies copies;
   InsertionStats stats;
   const std::size_t tets_before = mesh.num_tets();
@@ -199,6 +200,7 @@ InsertionStats insert_triangles(Mesh& mesh, const TriangleSoup& input, std::span
   stats.eagerly_rounded = c.eagerly_rounded;
   stats.already_faces = c.already_faces;
   stats.snapped_points = c.snapped_points;
+  stats.settled_points = c.settled_points;
   stats.vertex_creator = inserter.creators();
   stats.vertex_creator.resize(mesh.vertex_slots(), InsertionStats::kNoCreator);
   for (Index v = 0; v < mesh.vertex_slots(); ++v) {

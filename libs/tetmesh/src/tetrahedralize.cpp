@@ -188,6 +188,11 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
     // trimesh/chair_model's cut points 76k -> 130k, whose surface then found
     // no float32 place within 300 s.
     insertion.random_order = options.improve;
+    // Settling too, for now: in input order and unsnapped, the exact cut
+    // points of trimesh/chair_model grew long (62% of the time in GMP
+    // products) and its repair ran out of 300 s instead of 34, although
+    // trimesh/cycloidal's took 100 s instead of over 300.
+    insertion.settle_cut_points = options.improve;
     InsertionStats inserted =
         insert_triangles(mesh, surface, background.input_vertex, skip, logger, insertion);
     timer.count("triangles", inserted.inserted);
@@ -201,6 +206,7 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
     timer.count("eagerly_rounded", inserted.eagerly_rounded);
     timer.count("already_faces", inserted.already_faces);
     timer.count("snapped_points", inserted.snapped_points);
+    timer.count("settled_points", inserted.settled_points);
     timer.count("tets", mesh.num_tets());
     embedding.creator = std::move(inserted.vertex_creator);
     embedding.marked_as = std::move(inserted.marked_as);

@@ -13,8 +13,8 @@
 
 namespace mr::tetmesh::detail {
 
-TriangleInserter::TriangleInserter(Mesh& mesh, std::size_t max_exact_bits, double snap_distance)
-    : mesh_(mesh), max_exact_bits_(max_exact_bits), snap_distance_(snap_distance) {
+TriangleInserter::TriangleInserter(Mesh& mesh, std::size_t max_exact_bits, double snap_distance, bool settle)
+    : mesh_(mesh), max_exact_bits_(max_exact_bits), snap_distance_(snap_distance), settle_(settle) {
   seed_tet_.assign(mesh.vertex_slots(), kNoTet);
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
     if (!mesh.tet_alive(t)) continue;
@@ -268,6 +268,7 @@ bool TriangleInserter::insert(std::span<const Index> corners, std::uint32_t id) 
   clip_faces_on_plane();
   collect_cavity();
   if (!cavity_.empty()) rebuild_cavity();
+  if (settle_) settle_cut_points();
   ++counters_.inserted;
   return true;
 }

@@ -48,14 +48,16 @@ struct InsertionCounters {
   std::size_t eagerly_rounded = 0;  ///< cut points rounded during insertion (too many bits)
   std::size_t already_faces = 0;    ///< triangles that were a mesh face already: marked, nothing cut
   std::size_t snapped_points = 0;   ///< cut points moved onto a later plane near them
+  std::size_t settled_points = 0;   ///< cut points collapsed away inside the polygon they cut
 };
 
 class TriangleInserter {
  public:
   /// Cut points longer than `max_exact_bits` (bit_size) are rounded during
   /// insertion where nothing inverts; those closer than `snap_distance` to
-  /// a later polygon's plane may be moved onto it (0: never).
-  TriangleInserter(Mesh& mesh, std::size_t max_exact_bits, double snap_distance = 0.0);
+  /// a later polygon's plane may be moved onto it (0: never); with `settle`,
+  /// cut points inside the polygon that made them are collapsed away.
+  TriangleInserter(Mesh& mesh, std::size_t max_exact_bits, double snap_distance = 0.0, bool settle = false);
 
   /// Most corners of a polygon insert() accepts.
   static constexpr std::size_t kMaxCorners = 12;
@@ -95,6 +97,9 @@ class TriangleInserter {
   void forget_candidates();
   std::size_t snap_points_near_plane();
   bool try_move_onto_plane(Index v);
+  std::size_t settle_cut_points();
+  std::vector<Index> settling_targets(Index v, std::span<const Index> star) const;
+  bool collapse_cut_point(Index v);
   bool is_cut(Index t);
   bool section_outside_a_line(Index t);
   const HybridPoint& plane_point(Index u, Index v);
@@ -131,6 +136,7 @@ class TriangleInserter {
   Mesh& mesh_;
   std::size_t max_exact_bits_;
   double snap_distance_;
+  bool settle_;
   std::vector<Index> seed_tet_;  ///< per vertex slot, a live tet having it as a corner
   std::vector<std::uint32_t> creator_;
   InsertionCounters counters_;

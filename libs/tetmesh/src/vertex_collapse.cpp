@@ -102,7 +102,7 @@ StarBoundary star_boundary(const Mesh& mesh, std::span<const Index> removed, std
 }
 
 bool collapse_vertices(Mesh& mesh, std::span<const Index> removed, Index u, std::span<const Index> star,
-                       const StarBoundary& boundary) {
+                       const StarBoundary& boundary, std::vector<Index>* created_tets) {
   // A hull face through a removed vertex vanishes; the cone's side faces
   // replace it, on the same plane only if u is on that plane.
   for (const std::array<Index, 3>& f : boundary.hull_faces)
@@ -127,6 +127,7 @@ bool collapse_vertices(Mesh& mesh, std::span<const Index> removed, Index u, std:
   to_connect.insert(to_connect.end(), boundary.outside.begin(), boundary.outside.end());
   mesh.connect(to_connect);
   apply_moved_marks(mesh, created, moved);
+  if (created_tets != nullptr) *created_tets = std::move(created);
   return true;
 }
 

@@ -36,8 +36,9 @@ StarBoundary star_boundary(const Mesh& mesh, std::span<const Index> removed, std
 /// is star_boundary(mesh, removed, star) of the mesh as it is. Marked faces
 /// through removed vertices move to u (faces that shrink to an edge
 /// vanish); marks on the star's boundary stay. Returns false, changing
-/// nothing, when the collapse is not valid.
+/// nothing, when the collapse is not valid. `created`, if given, receives
+/// the new tets.
 bool collapse_vertices(Mesh& mesh, std::span<const Index> removed, Index u, std::span<const Index> star,
-                       const StarBoundary& boundary);
+                       const StarBoundary& boundary, std::vector<Index>* created = nullptr);
 
 }  // namespace mr::tetmesh::detail

@@ -30,6 +30,7 @@ struct InsertionStats {
   std::size_t eagerly_rounded = 0;  ///< cut points too long to keep exact, rounded at once
   std::size_t already_faces = 0;    ///< of `inserted`, triangles that were mesh faces: marked, not cut
   std::size_t snapped_points = 0;   ///< cut points moved onto a later plane (InsertionOptions::snap_distance)
+  std::size_t settled_points = 0;   ///< cut points collapsed away inside the polygon that made them
   std::size_t skipped = 0;          ///< left out on request (see `skip`)
   std::size_t rational_vertices = 0;  ///< still rational when insertion ended
   /// Per vertex slot, the id of the triangle whose insertion created the
@@ -51,6 +52,11 @@ struct InsertionOptions {
   /// it inverts: the plane then passes through it instead of cutting its
   /// edges beside it (0: never). The tracked faces do not move.
   double snap_distance = 0.0;
+  /// Once a polygon is in, collapse away the cut points it made inside its
+  /// own faces or off every tracked face, where every tet around stays
+  /// positive (triangle_inserter_settle.cpp): the tracked surface covers
+  /// the same regions, and later planes have fewer thin tets to cut.
+  bool settle_cut_points = true;
   /// Insert the triangles in a seeded random order (the same on every
   /// machine) instead of the input's: fewer cut points where neighbours'
   /// planes cut each other's thin tets (insertion.cpp).
