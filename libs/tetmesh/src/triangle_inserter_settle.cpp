@@ -78,13 +78,16 @@ std::vector<Index> TriangleInserter::settling_targets(Index v, std::span<const I
 
 namespace {
 
+// AMIPS on the doubles; infinite for a tet flat or inverted (exactly).
+double energy(const Mesh& mesh, const Tet& c) {
+  const double e = check::amips_energy(mesh.position(c[0]).approx, mesh.position(c[1]).approx,
+                                       mesh.position(c[2]).approx, mesh.position(c[3]).approx);
+  return std::isfinite(e) && e > 0 ? e : std::numeric_limits<double>::infinity();
+}
+
 double largest_energy(const Mesh& mesh, std::span<const Index> tets) {
   double largest = 0.0;
-  for (const Index t : tets) {
-    const Tet& c = mesh.tet(t);
-    largest = std::max(largest, check::amips_energy(mesh.position(c[0]).approx, mesh.position(c[1]).approx,
-                                                    mesh.position(c[2]).approx, mesh.position(c[3]).approx));
-  }
+  for (const Index t : tets) largest = std::max(largest, energy(mesh, mesh.tet(t)));
   return largest;
 }
 
@@ -93,12 +96,7 @@ double largest_energy_after(const Mesh& mesh, Index u, const StarBoundary& bound
   std::vector<ConeTet> tets;
   cone(u, boundary.faces, tets);
   double largest = 0.0;
-  for (const ConeTet& tet : tets) {
-    const Tet& c = tet.corners;
-    const double e = check::amips_energy(mesh.position(c[0]).approx, mesh.position(c[1]).approx,
-                                         mesh.position(c[2]).approx, mesh.position(c[3]).approx);
-    largest = std::max(largest, std::isfinite(e) && e > 0 ? e : std::numeric_limits<double>::infinity());
-  }
+  for (const ConeTet& tet : tets) largest = std::max(largest, energy(mesh, tet.corners));
   return largest;
 }
 
