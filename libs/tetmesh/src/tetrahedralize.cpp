@@ -184,15 +184,15 @@ Embedding embed_once(const TriangleSoup& surface, std::span<const char> skip, co
     // improvement (meshrepair) it only cost time: manifold/Offset1's kept
     // try 14 -> 61 s.
     insertion.snap_distance = options.improve ? derived.snap_spacing : 0.0;
-    // The same for the random order: on meshrepair's path it made
-    // trimesh/chair_model's cut points 76k -> 130k, whose surface then found
-    // no float32 place within 300 s.
-    insertion.random_order = options.improve;
-    // Settling too, for now: in input order and unsnapped, the exact cut
-    // points of trimesh/chair_model grew long (62% of the time in GMP
-    // products) and its repair ran out of 300 s instead of 34, although
-    // trimesh/cycloidal's took 100 s instead of over 300.
-    insertion.settle_cut_points = options.improve;
+    // Settling and the random order go together. Settled in input order,
+    // the patches of a CAD model's overlapping coplanar parts were cut
+    // along each other's lines again and again, and their exact points grew
+    // past 100,000 bits (trimesh/chair_model's repair: over 300 s, against
+    // 34 s unsettled); settled in random order, 12,000 bits at most and
+    // 10 s. Unsettled, the random order alone made more cut points there
+    // (76k -> 130k).
+    insertion.random_order = true;
+    insertion.settle_cut_points = true;
     InsertionStats inserted =
         insert_triangles(mesh, surface, background.input_vertex, skip, logger, insertion);
     timer.count("triangles", inserted.inserted);
