@@ -524,6 +524,14 @@ TEST_CASE("faces meeting others improperly are found exactly", "[spatial][keep]"
           std::vector<std::uint8_t>{0, 0, 0, 0});
   REQUIRE(spatial::faces_meeting_others(soup, {}, {}, std::vector<std::uint32_t>{0, 1, 1, 2}) ==
           std::vector<std::uint8_t>{1, 1, 0, 0});
+  // A face with collinear corners through a is neither tested nor tested
+  // against, skip list or not (it threw, from meshrepair's defect cut on a
+  // soup of manifold/Offset1 with duplicated and flipped faces).
+  const auto sliver = static_cast<Index>(soup.positions.size());
+  soup.positions.insert(soup.positions.end(), {{0.25, 0.25, -1}, {0.25, 0.25, 0}, {0.25, 0.25, 1}});
+  soup.triangles.push_back({sliver, sliver + 1, sliver + 2});
+  REQUIRE(spatial::faces_meeting_others(soup, {}, {}, std::vector<std::uint32_t>{0, 1, 2, 3, 4}) ==
+          std::vector<std::uint8_t>{1, 1, 0, 0, 0});
 }
 
 TEST_CASE("insertion stops past its tet budget", "[tetrahedralize][keep]") {

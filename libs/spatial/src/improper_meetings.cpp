@@ -16,7 +16,14 @@ namespace mr::spatial {
 std::vector<std::uint8_t> faces_meeting_others(const TriangleSoup& soup, std::span<const std::uint8_t> asked,
                                                std::span<const std::uint8_t> skip,
                                                std::span<const std::uint32_t> group) {
-  const auto skipped = [&](std::size_t f) { return !skip.empty() && skip[f]; };
+  // A face with collinear corners has no plane to test against: it is
+  // skipped too (exact), whatever the caller asked.
+  std::vector<std::uint8_t> degenerate(soup.triangles.size(), 0);
+  tbb::parallel_for(std::size_t(0), soup.triangles.size(), [&](std::size_t f) {
+    const std::array<Vec3d, 3> p = soup.corners(f);
+    degenerate[f] = collinear(p[0], p[1], p[2]) ? 1 : 0;
+  });
+  const auto skipped = [&](std::size_t f) { return degenerate[f] != 0 || (!skip.empty() && skip[f]); };
   const auto same_group = [&](std::size_t f, std::size_t g) {
     return !group.empty() && group[f] == group[g];
   };

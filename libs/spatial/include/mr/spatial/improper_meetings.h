@@ -15,7 +15,8 @@ namespace mr::spatial {
 /// in the vertices and edges they share (mr::intersect_triangles, exact;
 /// vertices identified by position). Only faces flagged in `asked` are
 /// tested (empty: all); faces flagged in `skip` (empty: none) are neither
-/// tested nor tested against; with `group` (one number per face; empty:
+/// tested nor tested against, and neither are degenerate faces (exactly
+/// collinear corners), which have no plane to meet; with `group` (one number per face; empty:
 /// none), only faces of another group are tested against. Candidates come
 /// from an AABB tree; parallel, deterministic.
 std::vector<std::uint8_t> faces_meeting_others(const TriangleSoup& soup,
