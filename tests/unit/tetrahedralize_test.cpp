@@ -229,35 +229,34 @@ TriangleSoup book_of_triangles(int pages) {
   return soup;
 }
 
+// `book` through meshrepair's path (no improvement), unsimplified; every
+// page must be embedded whole, the tets valid.
+tetmesh::PipelineResult embed_unimproved(const TriangleSoup& book) {
+  tetmesh::PipelineOptions options;
+  options.improve = false;
+  options.tetrahedralize.skip_simplify = true;
+  tetmesh::PipelineResult result = tetmesh::tetrahedralize(book, options);
+  CHECK(stage_count(result.stats, "insertion", "left_out") == 0);
+  CHECK(check::check_tets(result.mesh).valid());
+  CHECK(check::one_sided_distance(result.tracked_surface, book).max <= result.parameters.epsilon);
+  return result;
+}
+
 TEST_CASE("tetrahedralize: stuck cut points are retried on a coarser grid before any triangle is left out",
           "[tetrahedralize][slow]") {
   // With 8 pages, some cut points on the default grid (2^-20) cannot be
   // rounded; on the grid 16 times coarser every page is embedded.
-  tetmesh::PipelineOptions options;
-  options.improve = false;
-  options.tetrahedralize.skip_simplify = true;
-  const TriangleSoup book = book_of_triangles(8);
-  const tetmesh::PipelineResult result = tetmesh::tetrahedralize(book, options);
+  const tetmesh::PipelineResult result = embed_unimproved(book_of_triangles(8));
   CHECK(stage_count(result.stats, "snap", "grid_log2") == -16);
-  CHECK(stage_count(result.stats, "insertion", "left_out") == 0);
   CHECK(stage_count(result.stats, "insertion", "degenerate_skipped") == 0);
-  CHECK(check::check_tets(result.mesh).valid());
-  CHECK(check::one_sided_distance(result.tracked_surface, book).max <= result.parameters.epsilon);
 }
 
 TEST_CASE("tetrahedralize: without improvement (meshrepair's path) the cut points are settled too",
           "[tetrahedralize][slow]") {
   // Settled in random order, the crossing soups meshrepair rebuilds make a
   // fraction of the tets (trimesh/cycloidal's repair: over 300 -> 101 s).
-  tetmesh::PipelineOptions options;
-  options.improve = false;
-  options.tetrahedralize.skip_simplify = true;
-  const TriangleSoup book = book_of_triangles(6);
-  const tetmesh::PipelineResult result = tetmesh::tetrahedralize(book, options);
+  const tetmesh::PipelineResult result = embed_unimproved(book_of_triangles(6));
   CHECK(stage_count(result.stats, "insertion", "settled_points") > 0);
-  CHECK(stage_count(result.stats, "insertion", "left_out") == 0);
-  CHECK(check::check_tets(result.mesh).valid());
-  CHECK(check::one_sided_distance(result.tracked_surface, book).max <= result.parameters.epsilon);
 }
 
 TEST_CASE("tetrahedralize: the full pipeline with improvement keeps the cube", "[tetrahedralize][slow]") {
