@@ -91,6 +91,7 @@ nlohmann::json repair_figures(const repair::RepairResult& r) {
           {"output_grid", r.grid.name()},
           {"rounded_vertices", r.rounding.moved},
           {"rounded_off_nearest", r.rounding.nearest_refused},
+          {"rounding_sent_back", r.rounding.sent_back},
           {"rounding_collapsed", r.rounding.collapsed},
           {"finer_output_grids", r.finer_grids},
           {"rounding_passes", r.rounding.passes},

@@ -4,6 +4,7 @@
 #include <mr/kernel/intersections.h>
 #include <mr/kernel/predicates.h>
 #include <mr/spatial/box_grid.h>
+#include <mr/spatial/improper_meetings.h>
 
 #include <algorithm>
 #include <array>
@@ -84,6 +85,7 @@ class VertexPlacement {
       else
         ++stats.moved;
     }
+    place_nearest_at_once(stats);
     std::vector<Index> left = unplaced();
     // Where no grid point around a vertex works (sheets closer than a grid
     // step all around it), the vertex goes: collapsed onto a neighbour,
@@ -113,6 +115,71 @@ class VertexPlacement {
 
  private:
   static constexpr int kCollapseRounds = 8;
+  static constexpr int kAtOnceRounds = 8;
+
+  // Every vertex off the grid goes to its nearest grid point at once; one
+  // exact check of the whole surface (parallel) finds the faces that then
+  // meet another improperly or lose their plane, and the vertices that land
+  // on another; their moved corners go back, and the check runs again until
+  // it finds nothing. Only the vertices sent back are placed one at a time
+  // (place_all), each checked against the faces near it: on CAD models
+  // every vertex has thousands (long slivers, fans), so one vertex at a
+  // time was most of the stage.
+  void place_nearest_at_once(GridRoundingStats& stats) {
+    std::vector<std::uint8_t> tentative(original_.size(), 0);
+    std::vector<Index> moved;
+    for (std::size_t v = 0; v < original_.size(); ++v) {
+      const Vec3d nearest = grid_.nearest(original_[v]);
+      if (on_grid_[v] || !grid_.holds(nearest)) continue;
+      count_try();
+      surface_.positions[v] = nearest;
+      tentative[v] = 1;
+      moved.push_back(static_cast<Index>(v));
+    }
+    for (int round = 0; !moved.empty(); ++round) {
+      const std::vector<std::uint8_t> back =
+          round < kAtOnceRounds ? vertices_breaking_surface(tentative) : tentative;
+      const auto goes_back = [&](Index v) { return back[v] != 0; };
+      if (std::none_of(moved.begin(), moved.end(), goes_back)) break;
+      for (Index v : moved)
+        if (goes_back(v)) surface_.positions[v] = original_[v], tentative[v] = 0, ++stats.sent_back;
+      std::erase_if(moved, goes_back);
+    }
+    for (Index v : moved) {
+      if (auto it = occupied_.find(original_[v]); it != occupied_.end() && it->second == v)
+        occupied_.erase(it);
+      occupied_[surface_.positions[v]] = v;
+      on_grid_[v] = 1;
+      stats.max_move = std::max(stats.max_move, (surface_.positions[v] - original_[v]).norm());
+    }
+  }
+
+  // Per vertex: moved (`tentative`) and a corner of a face that meets
+  // another improperly or has collinear corners, or on the position of
+  // another vertex. Exact.
+  std::vector<std::uint8_t> vertices_breaking_surface(const std::vector<std::uint8_t>& tentative) const {
+    std::vector<std::uint8_t> asked(surface_.triangles.size(), 0), breaks(surface_.triangles.size(), 0);
+    for (std::size_t f = 0; f < surface_.triangles.size(); ++f) {
+      const Triangle& t = surface_.triangles[f];
+      asked[f] = tentative[t[0]] || tentative[t[1]] || tentative[t[2]];
+      if (!asked[f]) continue;
+      const std::array<Vec3d, 3> p = surface_.corners(f);
+      breaks[f] = collinear(p[0], p[1], p[2]);
+    }
+    const std::vector<std::uint8_t> meets = spatial::faces_meeting_others(surface_, asked);
+    std::vector<std::uint8_t> back(original_.size(), 0);
+    for (std::size_t f = 0; f < surface_.triangles.size(); ++f)
+      if (breaks[f] || meets[f])
+        for (Index v : surface_.triangles[f]) back[v] = tentative[v];
+    std::unordered_map<Vec3d, Index, PositionHash, PositionEqual> first_at;
+    for (std::size_t v = 0; v < original_.size(); ++v) {
+      const auto [it, inserted] = first_at.emplace(surface_.positions[v], static_cast<Index>(v));
+      if (inserted) continue;
+      back[v] = tentative[v];
+      back[it->second] = tentative[it->second];
+    }
+    return back;
+  }
 
   // Sweeps over `left` until every vertex is placed, a searching sweep
   // places none, or the passes run out; the first sweep of a run tries the

@@ -38,7 +38,8 @@ struct GridRoundingOptions {
 
 struct GridRoundingStats {
   std::size_t vertices = 0;
-  std::size_t moved = 0;            ///< vertices that were not on the grid
+  std::size_t moved = 0;      ///< vertices that were not on the grid
+  std::size_t sent_back = 0;  ///< moved vertices the whole-surface check sent back to be placed one at a time
   std::size_t nearest_refused = 0;  ///< vertices placed on a grid point other than the nearest
   std::size_t collapsed = 0;        ///< vertices no grid point worked for, collapsed onto a neighbour
   int passes = 0;
@@ -56,7 +57,10 @@ struct GridRoundingStats {
 /// collapsed onto the nearest placed neighbour for which the link condition
 /// holds and no face becomes degenerate or meets another improperly (its
 /// faces on that edge go; the surface is compacted, attributes follow).
-/// Vertices are placed in index order, so the result is deterministic.
+/// First every vertex goes to its nearest grid point at once, and one exact
+/// check of the whole surface sends back the corners of the faces that
+/// broke (until none does); those are then placed in index order, one at a
+/// time. The result is deterministic.
 /// Throws mr::RunError naming the count of vertices that found no place, or
 /// when the positions tried exceed options.max_tries.
 GridRoundingStats round_to_grid(TriangleSoup& surface, const CoordinateGrid& grid,
