@@ -218,3 +218,22 @@ TEST_CASE("sampled distance: a face of the other surface is at 0, a face moved o
   CHECK(off.max == Approx(0.25).epsilon(1e-9));
   CHECK(off.mean > 0.0);
 }
+
+TEST_CASE("lies within: every sample within the distance, as one_sided_distance measures it", "[check]") {
+  const TriangleSoup cube = test::cube_soup();
+  CHECK(check::lies_within(cube, cube, 0.0));  // every face is a face of the other
+  const TriangleSoup bigger = test::cube_soup(-0.1, 1.1);
+  CHECK(check::lies_within(bigger, cube, 0.18));  // its corners are sqrt(0.03) = 0.173 away
+  CHECK_FALSE(check::lies_within(bigger, cube, 0.17));
+  // A triangle through the cube between three of its corners on no common
+  // face: its corners are on the cube, its middle is not.
+  TriangleSoup across;
+  across.positions = {{0, 0, 0}, {1, 1, 0}, {0, 1, 1}};
+  across.triangles = {{0, 1, 2}};
+  const double farthest = check::one_sided_distance(across, cube).max;
+  REQUIRE(farthest > 0.2);
+  CHECK(check::lies_within(across, cube, 1.01 * farthest));
+  CHECK_FALSE(check::lies_within(across, cube, 0.99 * farthest));
+  CHECK_FALSE(check::lies_within(cube, TriangleSoup{}, 1.0));
+  CHECK(check::lies_within(TriangleSoup{}, cube, 0.0));
+}

@@ -52,9 +52,8 @@ std::string refusal(const hole_fill::HoleFillResult& fill, const TriangleSoup& w
   if (fill.filled() < fill.holes.size() || fill.open_border_edges != 0) return "a hole could not be filled";
   // The sampled distances first: they refuse most bands, for less than the
   // exact check costs.
-  if (check::one_sided_distance(patch_faces(fill), welded).max > epsilon)
-    return "a patch leaves the input's epsilon";
-  if (check::one_sided_distance(cut, fill.surface).max > epsilon)
+  if (!check::lies_within(patch_faces(fill), welded, epsilon)) return "a patch leaves the input's epsilon";
+  if (!check::lies_within(cut, fill.surface, epsilon))
     return "a face cut out is farther than epsilon from the patches";
   check::SurfaceReport report = check::check_surface(fill.surface);
   volume = report.volume;

@@ -1,6 +1,7 @@
 // Sampled one-sided distance with CGAL's AABB tree (one translation unit).
 
 #include <mr/check/distance.h>
+#include <mr/spatial/aabb_tree.h>
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -9,6 +10,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <array>
@@ -154,6 +156,32 @@ DistanceReport one_sided_distance(const TriangleSoup& from, const TriangleSoup& 
   }
   report.mean = sum / double(distances.size());
   return report;
+}
+
+bool lies_within(const TriangleSoup& from, const TriangleSoup& to, double distance,
+                 const DistanceOptions& options) {
+  if (from.triangles.empty()) return true;
+  if (to.triangles.empty()) return false;
+  // Long slivers and large patch faces: pieces keep the queries local.
+  const spatial::AabbTree tree(to, {.cut_large_triangles = true});
+  const Samples samples = sample_points(from, options);
+  const double distance_sq = distance * distance;
+  const auto face_within = [&](std::size_t f) {
+    const std::array<Vec3d, 3> corners = from.corners(f);
+    if (tree.one_triangle_near_all(corners, distance_sq)) return true;
+    for (std::size_t i = samples.first[f]; i < samples.first[f + 1]; ++i)
+      if (!tree.any_within(samples.points[i], distance)) return false;
+    return true;
+  };
+  // Not a cancelled loop: every range is asked, so the answer never depends
+  // on the threads' timing; a range stops at its first face outside.
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, from.triangles.size()), true,
+      [&](const tbb::blocked_range<std::size_t>& range, bool within) {
+        for (std::size_t f = range.begin(); within && f < range.end(); ++f) within = face_within(f);
+        return within;
+      },
+      [](bool a, bool b) { return a && b; });
 }
 
 }  // namespace mr::check

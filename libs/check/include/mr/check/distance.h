@@ -24,4 +24,13 @@ struct DistanceOptions {
 DistanceReport one_sided_distance(const TriangleSoup& from, const TriangleSoup& to,
                                   const DistanceOptions& options = {});
 
+/// Whether every sample of `from` (one_sided_distance's) lies within
+/// `distance` of `to`: one_sided_distance(from, to).max <= distance, but
+/// each query stops at the first triangle that close, and all stop at the
+/// first sample farther. A face one triangle of `to` is that close to at
+/// all three corners is within as a whole (distance to a triangle is
+/// convex), and its samples are not asked.
+bool lies_within(const TriangleSoup& from, const TriangleSoup& to, double distance,
+                 const DistanceOptions& options = {});
+
 }  // namespace mr::check
