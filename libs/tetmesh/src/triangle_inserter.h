@@ -81,6 +81,13 @@ class TriangleInserter {
     std::vector<Index> corners;
     Ids ids;
   };
+  /// Sides of a vertex, computed once per polygon (2: not yet): valid
+  /// while `stamp` is the current generation_.
+  struct VertexSides {
+    std::uint32_t stamp = 0;
+    std::int8_t plane = 2;
+    std::array<std::int8_t, kMaxCorners> lines{};
+  };
   /// The pieces a face was split into, oriented like `oriented`.
   struct SplitFace {
     std::array<Index, 3> oriented;
@@ -92,6 +99,7 @@ class TriangleInserter {
   std::size_t line_count() const { return corners_.size(); }
   int plane_sign(Index v);
   int line_side(int line, Index v);
+  VertexSides& sides_of(Index v);
   bool may_meet_polygon(Index t);
   void collect_candidates();
   void forget_candidates();
@@ -148,8 +156,7 @@ class TriangleInserter {
   std::vector<HybridPoint> line_lift_;  ///< corner i + unit vector along axis_: the line planes
   int axis_ = 0;                        ///< projection axis for the lines through T's edges
   int orientation_ = 1;                 ///< sign making T's interior positive for line_side
-  std::unordered_map<Index, int> plane_sign_;
-  std::unordered_map<Index, std::array<std::int8_t, kMaxCorners>> line_side_;
+  std::vector<VertexSides> sides_;  ///< per vertex slot: a lookup, not a hash (most of the candidate walk)
   std::vector<std::uint32_t> candidate_stamp_, cut_stamp_, cavity_stamp_;
   std::vector<Index> candidates_, cut_tets_, cavity_;
   std::unordered_map<std::uint64_t, HybridPoint> plane_points_;  ///< P on edge (sorted pair), computed once

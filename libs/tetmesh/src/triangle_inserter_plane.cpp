@@ -108,8 +108,6 @@ bool TriangleInserter::set_up_plane(std::span<const Index> corners, std::uint32_
     (axis_ == 0 ? lifted.x : axis_ == 1 ? lifted.y : lifted.z) += 1;
     line_lift_.push_back(HybridPoint::from_exact(std::move(lifted)));
   }
-  plane_sign_.clear();
-  line_side_.clear();
   candidates_.clear();
   cut_tets_.clear();
   cavity_.clear();
@@ -123,20 +121,29 @@ bool TriangleInserter::set_up_plane(std::span<const Index> corners, std::uint32_
   return true;
 }
 
+TriangleInserter::VertexSides& TriangleInserter::sides_of(Index v) {
+  if (sides_.size() <= v) sides_.resize(std::max<std::size_t>(v + 1, mesh_.vertex_slots()));
+  VertexSides& sides = sides_[v];
+  if (sides.stamp != generation_) {
+    sides.stamp = generation_;
+    sides.plane = 2;
+    sides.lines.fill(2);
+  }
+  return sides;
+}
+
 int TriangleInserter::plane_sign(Index v) {
   if (new_vertices_.count(v) != 0) return 0;  // cut points lie on P exactly
-  const auto [it, inserted] = plane_sign_.try_emplace(v, 0);
-  if (inserted) {
-    it->second = orient3d(mesh_.position(corners_[0]), mesh_.position(corners_[1]),
-                          mesh_.position(corners_[2]), mesh_.position(v));
+  std::int8_t& sign = sides_of(v).plane;
+  if (sign == 2) {
+    sign = static_cast<std::int8_t>(orient3d(mesh_.position(corners_[0]), mesh_.position(corners_[1]),
+                                             mesh_.position(corners_[2]), mesh_.position(v)));
   }
-  return it->second;
+  return sign;
 }
 
 int TriangleInserter::line_side(int line, Index v) {
-  auto [it, inserted] = line_side_.try_emplace(v);
-  if (inserted) it->second.fill(2);
-  std::int8_t& side = it->second[line];
+  std::int8_t& side = sides_of(v).lines[static_cast<std::size_t>(line)];
   if (side == 2) {
     const Index p = corners_[line];
     const Index q = corners_[(line + 1) % line_count()];

@@ -20,9 +20,7 @@
 namespace mr::tetmesh::detail {
 
 void TriangleInserter::forget_candidates() {
-  ++generation_;  // unstamps every tet
-  plane_sign_.clear();
-  line_side_.clear();
+  ++generation_;  // unstamps every tet and forgets every vertex's sides
   plane_points_.clear();
   candidates_.clear();
   cut_tets_.clear();
