@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -100,40 +101,53 @@ std::vector<char> mergeable(std::span<const std::array<Index, 3>> triangles, std
 // band after it spent 79 s inserting and then more than 120 s on the
 // surface (45 s for the whole repair in file order, whose first triangles
 // had shown the course at once).
-void check_budget(std::span<const std::size_t> tets_after, std::size_t tets_before, std::size_t n,
-                  std::size_t max_tets, bool random_order) {
+// A projection of the final tet count past its multiple of the budget.
+struct Overrun {
+  double factor;
+  double projected;
+};
+
+// The first of the rules above that fires, if any.
+std::optional<Overrun> projected_overrun(std::span<const std::size_t> tets_after, std::size_t tets_before,
+                                         std::size_t n, std::size_t max_tets, bool random_order) {
   constexpr double kProjectedOver = 4.0;
   constexpr double kProjectedFarOver = 32.0;
   constexpr double kSampledOver = 1.5;
   constexpr std::size_t kEarliest = 8;
   const std::size_t done = tets_after.size();
-  const std::size_t tets = tets_after.back();
-  const double grown = static_cast<double>(tets) - static_cast<double>(tets_before);
-  const double projected = static_cast<double>(tets_before) + grown * static_cast<double>(n) / double(done);
-  const std::size_t half = done / 2;
-  const double recent_rate =
-      half == 0
-          ? 0.0
-          : (static_cast<double>(tets) - static_cast<double>(tets_after[half - 1])) / double(done - half);
-  const double sampled = static_cast<double>(tets) + recent_rate * static_cast<double>(n - done);
-  const bool over = tets > max_tets;
+  const auto tets = static_cast<double>(tets_after.back());
   const double budget = static_cast<double>(max_tets);
-  const bool far = done >= kEarliest && projected > kProjectedFarOver * budget;
-  const bool projected_over =
-      done >= std::max<std::size_t>(32, n / 1000) && projected > kProjectedOver * budget;
-  const bool sampled_over =
-      random_order && done >= std::max<std::size_t>(32, n / 100) && sampled > kSampledOver * budget;
-  if (!over && (done >= n || !(far || projected_over || sampled_over))) return;
-  const std::string after = std::to_string(tets) + " tets after " + std::to_string(done) + " of " +
-                            std::to_string(n) + " triangles";
-  if (over) throw InsertionTooCostly("insertion: more than " + std::to_string(max_tets) + ": " + after);
+  const double grown = tets - static_cast<double>(tets_before);
+  const double projected = static_cast<double>(tets_before) + grown * static_cast<double>(n) / double(done);
+  if (done >= kEarliest && projected > kProjectedFarOver * budget)
+    return Overrun{kProjectedFarOver, projected};
+  if (done >= std::max<std::size_t>(32, n / 1000) && projected > kProjectedOver * budget)
+    return Overrun{kProjectedOver, projected};
+  if (!random_order || done < std::max<std::size_t>(32, n / 100)) return std::nullopt;
+  const std::size_t half = done / 2;
+  const double recent_rate = (tets - static_cast<double>(tets_after[half - 1])) / double(done - half);
+  const double sampled = tets + recent_rate * static_cast<double>(n - done);
+  if (sampled > kSampledOver * budget) return Overrun{kSampledOver, sampled};
+  return std::nullopt;
+}
+
+void check_budget(std::span<const std::size_t> tets_after, std::size_t tets_before, std::size_t n,
+                  std::size_t max_tets, bool random_order) {
+  const std::size_t done = tets_after.size();
+  const std::size_t tets = tets_after.back();
+  const auto after = [&] {
+    return std::to_string(tets) + " tets after " + std::to_string(done) + " of " + std::to_string(n) +
+           " triangles";
+  };
+  if (tets > max_tets)
+    throw InsertionTooCostly("insertion: more than " + std::to_string(max_tets) + ": " + after());
+  if (done >= n) return;
+  const std::optional<Overrun> overrun =
+      projected_overrun(tets_after, tets_before, n, max_tets, random_order);
+  if (!overrun) return;
   std::ostringstream why;
-  why << "insertion: on course for " << std::llround(far || projected_over ? projected : sampled)
-      << " tets, more than "
-      << (far              ? kProjectedFarOver
-          : projected_over ? kProjectedOver
-                           : kSampledOver)
-      << " times its budget of " << max_tets << ": " << after;
+  why << "insertion: on course for " << std::llround(overrun->projected) << " tets, more than "
+      << overrun->factor << " times its budget of " << max_tets << ": " << after();
   throw InsertionTooCostly(why.str());
 }
 
