@@ -1,14 +1,14 @@
 #include <mr/repair/round_to_grid.h>
 
+#include "surface_breaks.h"
+
 #include <mr/core/errors.h>
 #include <mr/kernel/intersections.h>
 #include <mr/kernel/predicates.h>
 #include <mr/spatial/box_grid.h>
-#include <mr/spatial/improper_meetings.h>
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <iterator>
 #include <limits>
@@ -34,18 +34,6 @@ struct Box {
   bool overlaps(const Box& b) const {
     return (lo.array() <= b.hi.array()).all() && (b.lo.array() <= hi.array()).all();
   }
-};
-
-// Positions equal as doubles (0.0 and -0.0 alike) get one key: a reader welds them.
-struct PositionHash {
-  std::size_t operator()(const Vec3d& p) const {
-    std::size_t h = 0;
-    for (int k = 0; k < 3; ++k) h = h * 0x9E3779B97F4A7C15ull + std::bit_cast<std::uint64_t>(p[k] + 0.0);
-    return h;
-  }
-};
-struct PositionEqual {
-  bool operator()(const Vec3d& a, const Vec3d& b) const { return a == b; }
 };
 
 // Faces around each vertex (mutable: a collapse moves faces to another vertex).
@@ -129,8 +117,9 @@ class VertexPlacement {
     std::vector<std::uint8_t> tentative(original_.size(), 0);
     std::vector<Index> moved;
     for (std::size_t v = 0; v < original_.size(); ++v) {
+      if (on_grid_[v]) continue;
       const Vec3d nearest = grid_.nearest(original_[v]);
-      if (on_grid_[v] || !grid_.holds(nearest)) continue;
+      if (!grid_.holds(nearest)) continue;
       count_try();
       surface_.positions[v] = nearest;
       tentative[v] = 1;
@@ -138,7 +127,7 @@ class VertexPlacement {
     }
     for (int round = 0; !moved.empty(); ++round) {
       const std::vector<std::uint8_t> back =
-          round < kAtOnceRounds ? vertices_breaking_surface(tentative) : tentative;
+          round < kAtOnceRounds ? vertices_breaking_surface(surface_, tentative) : tentative;
       const auto goes_back = [&](Index v) { return back[v] != 0; };
       if (std::none_of(moved.begin(), moved.end(), goes_back)) break;
       for (Index v : moved)
@@ -152,33 +141,6 @@ class VertexPlacement {
       on_grid_[v] = 1;
       stats.max_move = std::max(stats.max_move, (surface_.positions[v] - original_[v]).norm());
     }
-  }
-
-  // Per vertex: moved (`tentative`) and a corner of a face that meets
-  // another improperly or has collinear corners, or on the position of
-  // another vertex. Exact.
-  std::vector<std::uint8_t> vertices_breaking_surface(const std::vector<std::uint8_t>& tentative) const {
-    std::vector<std::uint8_t> asked(surface_.triangles.size(), 0), breaks(surface_.triangles.size(), 0);
-    for (std::size_t f = 0; f < surface_.triangles.size(); ++f) {
-      const Triangle& t = surface_.triangles[f];
-      asked[f] = tentative[t[0]] || tentative[t[1]] || tentative[t[2]];
-      if (!asked[f]) continue;
-      const std::array<Vec3d, 3> p = surface_.corners(f);
-      breaks[f] = collinear(p[0], p[1], p[2]);
-    }
-    const std::vector<std::uint8_t> meets = spatial::faces_meeting_others(surface_, asked);
-    std::vector<std::uint8_t> back(original_.size(), 0);
-    for (std::size_t f = 0; f < surface_.triangles.size(); ++f)
-      if (breaks[f] || meets[f])
-        for (Index v : surface_.triangles[f]) back[v] = tentative[v];
-    std::unordered_map<Vec3d, Index, PositionHash, PositionEqual> first_at;
-    for (std::size_t v = 0; v < original_.size(); ++v) {
-      const auto [it, inserted] = first_at.emplace(surface_.positions[v], static_cast<Index>(v));
-      if (inserted) continue;
-      back[v] = tentative[v];
-      back[it->second] = tentative[it->second];
-    }
-    return back;
   }
 
   // Sweeps over `left` until every vertex is placed, a searching sweep
