@@ -233,6 +233,35 @@ TEST_CASE("improve: passes that end above the stop energy are polished without s
   CHECK(surface.ids.size() == 12);
 }
 
+TEST_CASE("improve: the floor of the local target halves around the last bad tets, never for the worse",
+          "[improve][slow]") {
+  // A stop energy hard to reach: the target shrinks to its floor around the
+  // tets above it, and the passes stall there. The floor then halves, and
+  // the best stage is written: never worse than stopping at the first floor.
+  ImproveOptions options = options_with_threads(2);
+  options.stop_energy = 4.2;
+  options.min_sizing = 0.75;  // the first shrinking reaches it
+  options.max_passes = 40;
+  options.floor_halvings = 0;
+  Fixture at_floor;
+  const ImproveStats first = improve_mesh(at_floor.mesh, *at_floor.envelope, options);
+  options.floor_halvings = 2;
+  Fixture deeper;
+  const ImproveStats halved = improve_mesh(deeper.mesh, *deeper.envelope, options);
+  INFO("max AMIPS at the first floor " << first.written_max_amips << " after " << first.passes
+                                       << " passes, halving " << halved.written_max_amips << " after "
+                                       << halved.passes);
+  CHECK(first.floor_halvings == 0);
+  CHECK(halved.floor_halvings >= 1);
+  CHECK(halved.written_max_amips <= first.written_max_amips);
+  CHECK(halved.after.max_amips == halved.written_max_amips);
+  REQUIRE(find_mesh_inconsistency(deeper.mesh) == "");
+  CHECK(all_tets_positive_on_doubles(deeper.mesh));
+  const TrackedSurface surface = tracked_surface(deeper.mesh, deeper.cube, *deeper.envelope);
+  CHECK(surface.inside);
+  CHECK(surface.ids.size() == 12);
+}
+
 TEST_CASE("improve: the tets left above the stop energy are reported worst first, by their freest corner",
           "[improve]") {
   Fixture fixture;
@@ -428,6 +457,9 @@ TEST_CASE("improve: bad options are usage errors", "[improve]") {
   CHECK_THROWS_AS(improve_mesh(fixture.mesh, *fixture.envelope, options), UsageError);
   options.target_edge_length = 0.25;
   options.stop_energy = -1;
+  CHECK_THROWS_AS(improve_mesh(fixture.mesh, *fixture.envelope, options), UsageError);
+  options.stop_energy = 10;
+  options.floor_halvings = -1;
   CHECK_THROWS_AS(improve_mesh(fixture.mesh, *fixture.envelope, options), UsageError);
 }
 

@@ -2,7 +2,7 @@
 // the largest AMIPS energy is below the stop energy, refining the local
 // target length around tets that stay bad.
 
-#include "improve_local.h"
+#include "improve_stages.h"
 
 #include <mr/check/tet_check.h>
 #include <mr/core/errors.h>
@@ -37,28 +37,6 @@ struct QualityTally {
   }
 };
 
-// The largest and mean energy, and how many tets are at or above the stop energy.
-struct EnergyState {
-  double max = 0, mean = 0;
-  std::size_t bad = 0;
-};
-
-EnergyState energy_state(const Workspace& ws, std::span<const double> energy) {
-  EnergyState out;
-  double sum = 0;
-  std::size_t tets = 0;
-  const double stop_energy = ws.stop_energy;
-  for (Index t = 0; t < energy.size(); ++t) {
-    if (!ws.mesh.tet_alive(t) || !ws.drives(t)) continue;
-    out.max = std::max(out.max, energy[t]);
-    out.bad += energy[t] >= stop_energy;
-    sum += energy[t];
-    ++tets;
-  }
-  out.mean = tets ? sum / double(tets) : 0.0;
-  return out;
-}
-
 void validate(const ImproveOptions& options) {
   if (!(options.target_edge_length > 0) || !std::isfinite(options.target_edge_length)) {
     throw UsageError("improve_mesh: the target edge length must be positive and finite");
@@ -66,8 +44,8 @@ void validate(const ImproveOptions& options) {
   if (!(options.stop_energy > 0) || !std::isfinite(options.stop_energy)) {
     throw UsageError("improve_mesh: the stop energy must be positive and finite");
   }
-  if (options.max_passes < 0 || options.threads < 0) {
-    throw UsageError("improve_mesh: max_passes and threads must not be negative");
+  if (options.max_passes < 0 || options.threads < 0 || options.floor_halvings < 0) {
+    throw UsageError("improve_mesh: max_passes, threads and floor_halvings must not be negative");
   }
   if (!(options.min_sizing > 0 && options.min_sizing <= 1)) {
     throw UsageError("improve_mesh: min_sizing must be in (0, 1]");
@@ -207,22 +185,6 @@ void run_pass(Workspace& ws, ImproveStats& stats, bool split = true) {
 // the written ones too, and a pinch may raise it (suzanne: 18.4, then 98.1).
 constexpr int kMaxPolishPasses = 10;
 
-struct Snapshot {
-  Mesh mesh;
-  TetPayload payload;
-  std::vector<double> sizing, field_scale;
-
-  explicit Snapshot(const Workspace& ws)
-      : mesh(ws.mesh), payload(ws.payload), sizing(ws.sizing), field_scale(ws.field_scale) {}
-  void restore(Workspace& ws) && {
-    ws.mesh = std::move(mesh);
-    ws.payload = std::move(payload);
-    ws.sizing = std::move(sizing);
-    ws.field_scale = std::move(field_scale);
-    ws.reset_seeds();
-  }
-};
-
 // `energy`: per tet slot, after the last pass.
 void polish(Workspace& ws, ImproveStats& stats, std::vector<EnergyState>& history, std::vector<double> energy,
             const Logger& logger) {
@@ -236,7 +198,8 @@ void polish(Workspace& ws, ImproveStats& stats, std::vector<EnergyState>& histor
     ++stats.polish_passes;
     energy = tet_energies(ws, true);
     const EnergyState state = energy_state(ws, energy);
-    logger.log(LogLevel::debug, "polish " + pass_summary(stats.passes + pass + 1, stats, state));
+    logger.log(LogLevel::debug,
+               "polish " + std::to_string(pass + 1) + " after " + pass_summary(stats.passes, stats, state));
     history.push_back(state);
     if (!(state.max < 0.99 * best_max)) break;
     best_max = state.max;
@@ -251,12 +214,19 @@ void polish(Workspace& ws, ImproveStats& stats, std::vector<EnergyState>& histor
 // How many of the tets left at or above the stop energy the stats name.
 constexpr std::size_t kWorstReported = 10;
 
+std::string floor_summary(const FloorStages& floor, const EnergyState& state) {
+  std::ostringstream text;
+  text << "improve: the local target's floor halves to " << floor.floor() << " of the target, from max AMIPS "
+       << state.max << " with " << state.bad << " tets at or above the stop energy";
+  return text.str();
+}
+
 // Passes until the largest energy is below the stop energy (and, with a
-// sizing field, the lengths settled). When a pass
-// stalls, the local target shrinks around the bad tets (never two passes in
-// a row, so that the splits it causes can settle); once it reached its floor
-// and kPatience passes brought nothing, or kLongPatience passes brought
-// nothing anyway, improvement ends.
+// sizing field, the lengths settled). When a pass stalls, the local target
+// shrinks around the bad tets (never two passes in a row, so that the
+// splits it causes can settle); once it reached its floor and kPatience
+// passes brought nothing, the floor deepens (FloorStages) or improvement
+// ends; kLongPatience passes that brought nothing end it anyway.
 ImproveStats run_passes(Mesh& mesh, const SurfaceBounds& bounds, const ImproveOptions& options,
                         TetPayload& payload, const Logger& logger) {
   ImproveStats stats;
@@ -272,7 +242,8 @@ ImproveStats run_passes(Mesh& mesh, const SurfaceBounds& bounds, const ImproveOp
   if (options.sizing != nullptr) ws.collapse_below = 2.0 / 3.0;
   std::vector<double> energy = tet_energies(ws, true);
   std::vector<EnergyState> history{energy_state(ws, energy)};
-  bool just_resized = false, hit_floor = false, settled = options.sizing == nullptr;
+  bool just_resized = false, settled = options.sizing == nullptr;
+  FloorStages floor(options.min_sizing, options.floor_halvings);
   for (int pass = 0; pass < options.max_passes && (history.back().max >= options.stop_energy || !settled);
        ++pass) {
     const std::size_t tets_before = mesh.num_tets();
@@ -288,14 +259,27 @@ ImproveStats run_passes(Mesh& mesh, const SurfaceBounds& bounds, const ImproveOp
     history.push_back(state);
     just_resized = resize;
     if (resize) {
-      const SizingUpdate update = update_sizing(ws, energy, state.max, options.min_sizing);
+      const SizingUpdate update = update_sizing(ws, energy, state.max, floor.floor());
       stats.refinements += update.shrunk;
-      hit_floor = hit_floor || update.hit_floor;
+      floor.note_shrink(update);
     }
-    if (!improved_lately(history, hit_floor ? kPatience : kLongPatience)) break;
+    const std::size_t patience = floor.hit_floor() ? kPatience : kLongPatience;
+    if (improved_lately(floor.stage(history), patience)) continue;
+    if (!floor.may_deepen(state)) break;
+    // Each stage ends polished, as the last: a stage stuck just above the
+    // stop energy is often polished below it.
+    polish(ws, stats, history, std::move(energy), logger);
+    energy = tet_energies(ws, true);
+    if (history.back().max < options.stop_energy || !floor.deepen(ws, history)) break;
+    logger.log(LogLevel::debug, floor_summary(floor, history.back()));
   }
+  stats.floor_halvings = floor.halvings();
   stats.passes_max_amips = history.back().max;
   polish(ws, stats, history, std::move(energy), logger);
+  if (floor.restore_best(ws, history.back())) {
+    history.push_back(energy_state(ws, tet_energies(ws, true)));
+    ++stats.floor_stages_undone;
+  }
   ws.focus.clear();
   stats.rational_vertices = round_in_place(ws);
   stats.after = measure_quality(mesh);

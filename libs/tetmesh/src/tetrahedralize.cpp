@@ -269,6 +269,8 @@ detail::CarriedDecision improve(Mesh& mesh, const SurfaceBounds& bounds, std::sp
   const ImproveStats improved = improve_mesh(mesh, bounds, improve_options, payload, logger);
   timer.count("passes", static_cast<std::size_t>(improved.passes));
   timer.count("polish_passes", static_cast<std::size_t>(improved.polish_passes));
+  timer.count("floor_halvings", static_cast<std::size_t>(improved.floor_halvings));
+  timer.count("floor_stages_undone", static_cast<std::size_t>(improved.floor_stages_undone));
   timer.count("splits", improved.splits);
   timer.count("collapses", improved.collapses);
   timer.count("swaps", improved.swaps_32 + improved.swaps_23 + improved.swaps_44 + improved.edge_removals);

@@ -38,13 +38,20 @@ struct ImproveOptions {
   int threads = 0;
   /// After a pass that lowered the energies little, the local target length
   /// shrinks around the tets of high energy and grows back elsewhere (the
-  /// paper's adaptive refinement), never below this fraction of the target.
-  /// Improvement ends at the stop energy, after max_passes, or when the
-  /// target reached this floor and five more passes lowered the largest
-  /// energy by less than 1%. Deeper floors were measured worse: at
-  /// epsilon (fTetWild's), splits and collapses traded places for dozens of
-  /// passes (thingi10k/61460: 900k splits, max AMIPS stuck at 33).
+  /// paper's adaptive refinement), never below this fraction of the target
+  /// at first. Once the target reached this floor and five more passes
+  /// lowered the largest energy by less than 1%, the floor halves (at most
+  /// floor_halvings times) if the bad tets are few, or improvement ends; it ends at
+  /// the stop energy or after max_passes too. A deep floor from the first
+  /// pass was measured worse: at epsilon (fTetWild's), splits and collapses
+  /// traded places for dozens of passes (thingi10k/61460: 900k splits, max
+  /// AMIPS stuck at 33).
   double min_sizing = 0.25;
+  /// How many times the floor may halve (see min_sizing). A fourth and
+  /// fifth halving made trimesh/angle_block worse (max AMIPS 18.6 -> 35.8,
+  /// 54k -> 326k tets); a stage that ends worse than the one before it is
+  /// undone, so more halvings cost time, not quality.
+  int floor_halvings = 3;
   /// With SurfaceBounds::triangles, creased vertices where parts meet or
   /// cross (or copies overlap) may move where their tets are bad too, not
   /// only those of one sheet. Projected onto one part's triangle, such a
@@ -86,6 +93,11 @@ struct ImproveStats {
   std::size_t sizing_outside = 0;
   std::size_t sizing_clamped = 0;
   int passes = 0;
+  /// Times the floor of the local target (ImproveOptions::min_sizing)
+  /// halved, and whether the last of those stages ended worse than the one
+  /// before it and was undone (1) or not (0).
+  int floor_halvings = 0;
+  int floor_stages_undone = 0;
   /// Passes without splits after the others ended above the stop energy;
   /// the mesh ends as the best of them (or as the passes left it).
   int polish_passes = 0;
