@@ -185,10 +185,10 @@ void run_pass(Workspace& ws, ImproveStats& stats, bool split = true) {
 // the written ones too, and a pinch may raise it (suzanne: 18.4, then 98.1).
 constexpr int kMaxPolishPasses = 10;
 
-// `energy`: per tet slot, after the last pass.
-void polish(Workspace& ws, ImproveStats& stats, std::vector<EnergyState>& history, std::vector<double> energy,
-            const Logger& logger) {
-  if (history.back().max < ws.stop_energy) return;
+// `energy`: per tet slot, after the last pass. Returns the energies of the mesh it leaves.
+std::vector<double> polish(Workspace& ws, ImproveStats& stats, std::vector<EnergyState>& history,
+                           std::vector<double> energy, const Logger& logger) {
+  if (history.back().max < ws.stop_energy) return energy;
   std::optional<Snapshot> best;
   double best_max = history.back().max;
   for (int pass = 0; pass < kMaxPolishPasses && best_max >= ws.stop_energy; ++pass) {
@@ -207,8 +207,10 @@ void polish(Workspace& ws, ImproveStats& stats, std::vector<EnergyState>& histor
   }
   if (best) {
     std::move(*best).restore(ws);
-    history.push_back(energy_state(ws, tet_energies(ws, true)));
+    energy = tet_energies(ws, true);
+    history.push_back(energy_state(ws, energy));
   }
+  return energy;
 }
 
 // How many of the tets left at or above the stop energy the stats name.
@@ -268,8 +270,7 @@ ImproveStats run_passes(Mesh& mesh, const SurfaceBounds& bounds, const ImproveOp
     if (!floor.may_deepen(state)) break;
     // Each stage ends polished, as the last: a stage stuck just above the
     // stop energy is often polished below it.
-    polish(ws, stats, history, std::move(energy), logger);
-    energy = tet_energies(ws, true);
+    energy = polish(ws, stats, history, std::move(energy), logger);
     if (history.back().max < options.stop_energy || !floor.deepen(ws, history)) break;
     logger.log(LogLevel::debug, floor_summary(floor, history.back()));
   }
