@@ -12,8 +12,9 @@
 namespace mr::tetmesh::detail {
 namespace {
 
-// Below it, a tet is removed whatever the rule (|w| > 1/2 or w > 1/2), with
-// room for the per-tet numbers to move a little during improvement.
+// At most this, a tet is removed whatever the rule (|w| > 1/2 or w > 1/2).
+constexpr double kKeptAbove = 0.5;
+// Below it, with room for per-tet numbers asked again after improvement.
 constexpr double kMargin = 0.25;
 
 }  // namespace
@@ -29,17 +30,34 @@ FilterPreview preview_filter(const Mesh& mesh, const TriangleSoup& surface, std:
   return {open_tracked_winding(mesh, tracked, origins, boundary_edges, surface, left_out, stats), false};
 }
 
-std::vector<char> fates_from_winding(const Mesh& mesh, std::span<const double> winding) {
+DecisionFaces decision_faces(const Mesh& mesh, std::span<const double> winding) {
+  const auto kept = [&](Index t) { return t != kNoTet && std::abs(winding[t]) > kKeptAbove; };
+  DecisionFaces out;
+  for (Index t = 0; t < mesh.tet_slots(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    for (int f = 0; f < 4; ++f) {
+      const Index u = mesh.neighbour(t, f);
+      if ((u != kNoTet && u < t) || kept(t) == kept(u)) continue;
+      ++(mesh.is_surface_face(t, f) ? out.tracked : out.untracked);
+    }
+  }
+  return out;
+}
+
+std::vector<char> fates_from_winding(const Mesh& mesh, std::span<const double> winding, bool carried) {
+  const auto removed = [&](Index t) {
+    return carried ? !(std::abs(winding[t]) > kKeptAbove) : std::abs(winding[t]) < kMargin;
+  };
   // Removed tets with a corner on a kept one share the vertices whose moves
   // and collapses improve the kept tets.
   std::vector<char> touched(mesh.vertex_slots(), 0);
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
-    if (!mesh.tet_alive(t) || std::abs(winding[t]) < kMargin) continue;
+    if (!mesh.tet_alive(t) || removed(t)) continue;
     for (const Index v : mesh.tet(t)) touched[v] = 1;
   }
   std::vector<char> out(mesh.tet_slots(), kWritten);
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
-    if (!mesh.tet_alive(t) || std::abs(winding[t]) >= kMargin) continue;
+    if (!mesh.tet_alive(t) || !removed(t)) continue;
     const Tet& c = mesh.tet(t);
     const bool beside = std::any_of(c.begin(), c.end(), [&](Index v) { return touched[v] != 0; });
     out[t] = beside ? kBesideWritten : kDropped;

@@ -25,10 +25,25 @@ struct FilterPreview {
 
 FilterPreview preview_filter(const Mesh& mesh, const TriangleSoup& surface, std::span<const char> left_out);
 
+/// Where the decision `winding` gives (kept by |w| > 1/2) changes between
+/// two tets, or a tet and the hull: on tracked faces, or across open space
+/// (caps over holes and gaps, untracked).
+struct DecisionFaces {
+  std::size_t tracked = 0;
+  std::size_t untracked = 0;
+  double untracked_share() const {
+    const std::size_t all = tracked + untracked;
+    return all == 0 ? 0.0 : double(untracked) / double(all);
+  }
+};
+DecisionFaces decision_faces(const Mesh& mesh, std::span<const double> winding);
+
 /// Per tet slot, its TetFate (improve.h): kDropped or kBesideWritten (a
 /// corner on a kWritten tet) for a tet the filter removes under any winding
-/// rule, its winding number below 1/4 in magnitude; kWritten for the
-/// others, removed slots included.
-std::vector<char> fates_from_winding(const Mesh& mesh, std::span<const double> winding);
+/// rule; kWritten for the others, removed slots included. A `carried`
+/// decision is final: removed means a winding number of at most 1/2 in
+/// magnitude. Otherwise the filter asks again after improvement, and
+/// removed means below 1/4, with room for the per-tet numbers to move.
+std::vector<char> fates_from_winding(const Mesh& mesh, std::span<const double> winding, bool carried);
 
 }  // namespace mr::tetmesh::detail

@@ -17,11 +17,16 @@ namespace mr::tetmesh::detail {
 
 /// What improvement carried to the filter, per tet slot of the improved mesh.
 struct CarriedDecision {
-  /// The filter's winding number, decided by region before improvement
-  /// (FilterPreview::by_region); empty when the tracked surface was no cycle.
+  /// The filter's winding number, decided before improvement by region
+  /// (FilterPreview::by_region) or, on an open input, per tet; empty when
+  /// the filter decides afterwards (a closed input whose tracked surface
+  /// was no cycle, an open input whose decision changes much across open
+  /// space, or rational points left to round).
   std::vector<double> winding;
   /// The TetFate (improve.h) improvement worked with; empty when it had none.
   std::vector<char> fate;
+  /// `winding` was decided by region.
+  bool by_region = false;
 };
 
 /// The filter's decision per live tet of `mesh`, whose tracked faces embed

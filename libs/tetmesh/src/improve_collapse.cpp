@@ -146,14 +146,6 @@ bool surface_allows(const std::vector<TrackedFace>& at_u, const std::vector<Trac
   return true;
 }
 
-// Whether the carried decision (TetPayload::value) keeps tet t, by either
-// winding rule; hull faces have removed space beyond them.
-std::pair<bool, bool> kept_side(const Workspace& ws, Index t) {
-  if (t == kNoTet) return {false, false};
-  const double w = ws.payload.value[t];
-  return {std::abs(w) > 0.5, w > 0.5};
-}
-
 // The tracked faces at v (in its star) where the carried decision changes:
 // the faces the written mesh's boundary will be made of.
 std::vector<TrackedFace> deciding_faces_at(const Workspace& ws, std::span<const Index> star, Index v) {
@@ -162,7 +154,7 @@ std::vector<TrackedFace> deciding_faces_at(const Workspace& ws, std::span<const 
   for (const Index t : star) {
     for (int f = 0; f < 4; ++f) {
       if (mesh.tet(t)[f] == v || !mesh.is_surface_face(t, f)) continue;
-      if (kept_side(ws, t) == kept_side(ws, mesh.neighbour(t, f))) continue;
+      if (ws.kept_side(t) == ws.kept_side(mesh.neighbour(t, f))) continue;
       faces.push_back({face_key(mesh.face_vertices(t, f)), {}});
     }
   }

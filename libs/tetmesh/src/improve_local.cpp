@@ -138,6 +138,18 @@ std::vector<Index> Workspace::counted(std::span<const Index> tets) const {
   return out;
 }
 
+std::pair<bool, bool> Workspace::kept_side(Index t) const {
+  if (t == kNoTet) return {false, false};
+  const double w = payload.value[t];
+  return {std::abs(w) > 0.5, w > 0.5};
+}
+
+bool Workspace::mixes_decisions(std::span<const Index> tets) const {
+  if (payload.value.empty() || tets.empty()) return false;
+  const std::pair<bool, bool> first = kept_side(tets.front());
+  return std::any_of(tets.begin() + 1, tets.end(), [&](Index t) { return kept_side(t) != first; });
+}
+
 void Workspace::note_vertex(Index v, double size) {
   if (v >= sizing.size()) sizing.resize(std::size_t(v) + 1, 1.0);
   sizing[v] = size;

@@ -15,6 +15,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace mr::tetmesh::improve_detail {
@@ -70,6 +71,13 @@ class Workspace {
   bool drives(Index t) const { return t >= payload.fate.size() || payload.fate[t] == kWritten; }
   /// The tets of `tets` whose energy counts.
   std::vector<Index> counted(std::span<const Index> tets) const;
+  /// Whether the filter's carried decision (TetPayload::value) keeps tet t,
+  /// by either winding rule (|w| > 1/2, w > 1/2); {false, false} for
+  /// kNoTet, whose space the hull removes. Only with a carried decision.
+  std::pair<bool, bool> kept_side(Index t) const;
+  /// Whether `tets` carry different decisions (TetPayload::value): an
+  /// operation that merges them would move the written mesh's boundary.
+  bool mixes_decisions(std::span<const Index> tets) const;
 
   /// The live tets around v, sorted. Empty for a vertex no tet uses.
   std::vector<Index> star(Index v);

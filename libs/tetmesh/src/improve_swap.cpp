@@ -3,7 +3,8 @@
 // corners renamed, keeping a face of the cavity's boundary, so its
 // orientation follows from the old one; the exact positivity test then
 // decides whether the swap is geometrically valid. Swaps never remove a
-// tracked face and are taken only when they lower the largest energy.
+// tracked face, never merge tets the carried filter decision tells apart,
+// and are taken only when they lower the largest energy.
 
 #include "improve_local.h"
 
@@ -154,7 +155,7 @@ int try_edge_swap(Workspace& ws, Index a, Index b, Index hint) {
   Mesh& mesh = ws.mesh;
   const std::vector<Index> tets = ws.edge_tets(a, b, hint);
   if (tets.size() < 3 || tets.size() > std::size_t(kMaxRing)) return 0;
-  if (edge_has_tracked_face(mesh, tets, a, b)) return 0;
+  if (edge_has_tracked_face(mesh, tets, a, b) || ws.mixes_decisions(tets)) return 0;
   const EdgeRing ring = edge_ring(mesh, tets, a, b);
   if (ring.tets.empty()) return 0;
 
@@ -176,6 +177,7 @@ bool try_face_swap(Workspace& ws, Index t, int f) {
   std::vector<Tet> new_tets;
   for (const Index w : mesh.face_vertices(t, f)) new_tets.push_back(replaced(mesh.tet(t), w, b));
   const std::array<Index, 2> old_tets{t, u};
+  if (ws.mixes_decisions(old_tets)) return false;
   if (max_energy(mesh, new_tets) >= max_energy_of(mesh, old_tets)) return false;
   if (!all_positive(mesh, new_tets)) return false;
   replace_tets(ws, old_tets, new_tets, same_faces);

@@ -59,8 +59,8 @@ struct ImproveOptions {
   /// tracked faces by geometry afterwards (openscad-nonmanifold-crash left
   /// the envelope by 19 eps): only for a filter that reads its decision
   /// from before (TetPayload::value), as the pipeline does when the
-  /// tracked surface is a cycle, or that decides per tet and keeps only
-  /// tets improved as kWritten, as it does on an open input.
+  /// tracked surface is a cycle or the input is open, or that decides per
+  /// tet and keeps only tets improved as kWritten.
   bool release_junctions = false;
   /// A target edge length that varies in space (absolute, not owned; null:
   /// target_edge_length everywhere). Sampled at each vertex where it is made
@@ -158,14 +158,16 @@ enum TetFate : char {
 /// - `fate`: the passes work on the kWritten tets, and the stop energy is
 ///   measured there. Every tet stays strictly positive and the tracked
 ///   surface in the envelope whatever its fate.
-/// - `value`: any number per tet (the pipeline carries the filter's winding
-///   number: no operation moves a tet across a tracked face, so the number
-///   of its region stays its own).
+/// - `value`: the filter's winding number per tet, its decision (kept by
+///   |w| > 1/2 or w > 1/2), carried through improvement so that the filter
+///   reads it afterwards. Tracked faces where the decision changes keep
+///   their topology; the others (crossings inside the solid, flaps outside
+///   it) only stay in the envelope, and may be pinched onto another sheet.
 /// A new tet takes the entries of the tet it was made from (a split's half,
-/// a collapse's moved tet); a swap's new tets, all in one region since
-/// swaps never cross a tracked face, take the value of the first old tet
-/// and the mildest fate. On return both have one entry per slot of the
-/// improved mesh (those of removed slots mean nothing).
+/// a collapse's moved tet); a swap's new tets take the value of the first
+/// old tet (swaps never merge tets of different decisions) and the mildest
+/// fate. On return both have one entry per slot of the improved mesh
+/// (those of removed slots mean nothing).
 struct TetPayload {
   std::vector<char> fate;
   std::vector<double> value;
