@@ -12,10 +12,12 @@
 namespace mr::tetmesh::detail {
 namespace {
 
-// At most this, a tet is removed whatever the rule (|w| > 1/2 or w > 1/2).
-constexpr double kKeptAbove = 0.5;
-// Below it, with room for per-tet numbers asked again after improvement.
+// Below it, a tet is removed whatever the rule (|w| > 1/2 or w > 1/2), with
+// room for per-tet numbers asked again after improvement to move a little.
 constexpr double kMargin = 0.25;
+
+// Whether some rule keeps a tet of winding number w: the absolute one.
+bool kept_by_some_rule(double w) { return is_inside(w, WindingRule::absolute); }
 
 }  // namespace
 
@@ -31,7 +33,7 @@ FilterPreview preview_filter(const Mesh& mesh, const TriangleSoup& surface, std:
 }
 
 DecisionFaces decision_faces(const Mesh& mesh, std::span<const double> winding) {
-  const auto kept = [&](Index t) { return t != kNoTet && std::abs(winding[t]) > kKeptAbove; };
+  const auto kept = [&](Index t) { return t != kNoTet && kept_by_some_rule(winding[t]); };
   DecisionFaces out;
   for (Index t = 0; t < mesh.tet_slots(); ++t) {
     if (!mesh.tet_alive(t)) continue;
@@ -46,7 +48,7 @@ DecisionFaces decision_faces(const Mesh& mesh, std::span<const double> winding) 
 
 std::vector<char> fates_from_winding(const Mesh& mesh, std::span<const double> winding, bool carried) {
   const auto removed = [&](Index t) {
-    return carried ? !(std::abs(winding[t]) > kKeptAbove) : std::abs(winding[t]) < kMargin;
+    return carried ? !kept_by_some_rule(winding[t]) : std::abs(winding[t]) < kMargin;
   };
   // Removed tets with a corner on a kept one share the vertices whose moves
   // and collapses improve the kept tets.

@@ -3,6 +3,7 @@
 #include <mr/check/tet_check.h>
 #include <mr/core/errors.h>
 #include <mr/tetmesh/incidence.h>
+#include <mr/tetmesh/winding_filter.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -141,7 +142,7 @@ std::vector<Index> Workspace::counted(std::span<const Index> tets) const {
 std::pair<bool, bool> Workspace::kept_side(Index t) const {
   if (t == kNoTet) return {false, false};
   const double w = payload.value[t];
-  return {std::abs(w) > 0.5, w > 0.5};
+  return {is_inside(w, WindingRule::absolute), is_inside(w, WindingRule::positive)};
 }
 
 bool Workspace::mixes_decisions(std::span<const Index> tets) const {
