@@ -115,14 +115,13 @@ bool sizing_settled(const ImproveOptions& options, std::size_t tets_before, std:
   return options.sizing == nullptr || change <= kSettledShare * double(tets_before);
 }
 
-// Once at most this share of the tets is bad (at or above the stop
+// Once few tets are bad (kFewBadShare, at or above the stop
 // energy), a pass works only within kFocusRings rings of their corners:
 // elsewhere the mesh is good already, and whole passes for the last few bad
 // tets took most of the time (c3d/igea: 7 of its 14 passes for a largest
 // energy between 10.2 and 10.7). The first kWholePasses passes, and every
 // pass under a sizing field, see the whole mesh: they bring the lengths to
 // their targets.
-constexpr double kFocusShare = 0.01;
 constexpr int kFocusRings = 2;
 constexpr int kWholePasses = 4;
 
@@ -144,7 +143,7 @@ void set_focus(Workspace& ws, std::span<const double> energy, bool whole) {
     ++bad;
     for (const Index v : mesh.tet(t)) add(v, frontier);
   }
-  if (double(bad) > kFocusShare * double(driving)) return;
+  if (double(bad) > kFewBadShare * double(driving)) return;
   const VertexTets incidence(mesh);
   for (int ring = 0; ring < kFocusRings; ++ring) {
     std::vector<Index> next;

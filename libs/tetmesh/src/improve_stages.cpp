@@ -5,11 +5,10 @@
 namespace mr::tetmesh::improve_detail {
 namespace {
 
-// A deeper floor follows only while at most this share of the tets that
-// count (or this many) are bad. A deeper floor from the start refined
+// A deeper floor follows only while few tets (kFewBadShare of those that
+// count, or this many) are bad. A deeper floor from the start refined
 // whole meshes (trimesh/soup and openscad-nonmanifold-crash past 300 s at
 // 1/20 of the target).
-constexpr double kDeepenShare = 0.01;
 constexpr double kDeepenTets = 500;
 
 // A stage that ends this many times above the best one's largest energy
@@ -37,7 +36,7 @@ EnergyState energy_state(const Workspace& ws, std::span<const double> energy) {
 }
 
 bool FloorStages::may_deepen(const EnergyState& state) const {
-  const double few = std::max(kDeepenShare * double(state.tets), kDeepenTets);
+  const double few = std::max(kFewBadShare * double(state.tets), kDeepenTets);
   return hit_ && halvings_ < max_halvings_ && double(state.bad) <= few;
 }
 

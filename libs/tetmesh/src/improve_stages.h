@@ -12,6 +12,11 @@
 
 namespace mr::tetmesh::improve_detail {
 
+/// "Few bad tets": at most this share of the tets that count are at or
+/// above the stop energy. Passes then work around them only
+/// (improve_driver.cpp), and the refinement floor may deepen around them.
+inline constexpr double kFewBadShare = 0.01;
+
 /// The largest and mean energy of the tets that count, how many there are,
 /// and how many of them are at or above the stop energy.
 struct EnergyState {
