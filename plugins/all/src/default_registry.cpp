@@ -8,7 +8,7 @@
 #include <mr/plugins/gltf_formats.h>
 #endif
 #ifdef MR_WITH_VDB
-#include <mr/plugins/vdb_formats.h>
+#include "lazy_vdb_formats.h"
 #endif
 
 namespace mr::io {
@@ -24,7 +24,8 @@ Registry make_default_registry() {
   plugins::register_gltf_formats(registry);
 #endif
 #ifdef MR_WITH_VDB
-  plugins::register_vdb_formats(registry);
+  // Loaded on first use: OpenVDB costs every process that loads it 26 MB and 30 ms.
+  plugins::register_vdb_formats_lazily(registry);
 #endif
   return registry;
 }

@@ -7,12 +7,7 @@
 namespace mr::plugins {
 
 void register_vdb_formats(io::Registry& registry) {
-  io::Format format;
-  format.name = "vdb";
-  format.extensions = {".vdb"};
-  format.kind = io::MeshKind::surface;
-  format.description =
-      "OpenVDB narrow-band level set (mesh <-> signed distance grid); a float grid as a sizing field";
+  io::Format format = vdb_format_declaration();
   format.read_surface_bytes = [](std::string_view bytes, const std::string& name,
                                  const io::ReadOptions& options) {
     return vdb::read_level_set(bytes, name, options.level_set);

@@ -1,0 +1,28 @@
+# mr_make_position_independent(target): builds `target` and every static
+# library it links, transitively, as position-independent code, for a shared
+# object (the Python module, a plugin module) that links them. Only those:
+# the other libraries, tools and tests keep their flags.
+include_guard(GLOBAL)
+function(mr_make_position_independent target)
+  get_target_property(imported ${target} IMPORTED)
+  get_target_property(type ${target} TYPE)
+  if(imported)
+    return()
+  elseif(type STREQUAL "INTERFACE_LIBRARY")
+    get_target_property(deps ${target} INTERFACE_LINK_LIBRARIES)
+  elseif(type STREQUAL "STATIC_LIBRARY" OR type STREQUAL "OBJECT_LIBRARY")
+    get_target_property(done ${target} POSITION_INDEPENDENT_CODE)
+    if(done)
+      return()
+    endif()
+    set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+    get_target_property(deps ${target} LINK_LIBRARIES)
+  else()
+    return()
+  endif()
+  foreach(dep IN LISTS deps)
+    if(TARGET ${dep})
+      mr_make_position_independent(${dep})
+    endif()
+  endforeach()
+endfunction()
