@@ -9,7 +9,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -24,24 +23,27 @@ struct EdgeCandidate {
   Index tet;  ///< a tet that had the edge when candidates were collected
 };
 
-// The edges of the tets that count, each with the lowest such tet: {a, b, tet}, a < b.
-std::vector<std::array<Index, 3>> counted_edges(const Workspace& ws) {
+// Calls visit(a, b, tet) for every edge of the tets that count, with the
+// lowest such tet, in increasing (a, b), a < b. Found vertex by vertex from
+// the incidence, not from a sorted list of every tet's six edges: that list
+// (72 bytes a tet) was the peak of a whole run's memory.
+template <class Visit>
+void for_each_counted_edge(const Workspace& ws, Visit visit) {
   const Mesh& mesh = ws.mesh;
-  std::vector<std::array<Index, 3>> edges;
-  edges.reserve(mesh.num_tets() * 6);
-  for (Index t = 0; t < mesh.tet_slots(); ++t) {
-    if (!mesh.tet_alive(t) || !ws.counts(t)) continue;
-    const Tet& c = mesh.tet(t);
-    for (int i = 0; i < 4; ++i) {
-      for (int j = i + 1; j < 4; ++j)
-        if (ws.in_focus(c[i]) && ws.in_focus(c[j]))
-          edges.push_back({std::min(c[i], c[j]), std::max(c[i], c[j]), t});
+  const VertexTets incidence(mesh);
+  std::vector<std::pair<Index, Index>> ends;  // {b, tet}
+  for (Index a = 0; a < mesh.vertex_slots(); ++a) {
+    if (!ws.in_focus(a)) continue;
+    ends.clear();
+    for (const Index t : incidence.of(a)) {
+      if (!ws.counts(t)) continue;
+      for (const Index b : mesh.tet(t))
+        if (b > a && ws.in_focus(b)) ends.emplace_back(b, t);
     }
+    std::sort(ends.begin(), ends.end());
+    for (std::size_t i = 0; i < ends.size(); ++i)
+      if (i == 0 || ends[i].first != ends[i - 1].first) visit(a, ends[i].first, ends[i].second);
   }
-  tbb::parallel_sort(edges.begin(), edges.end());
-  const auto same_edge = [](const auto& x, const auto& y) { return x[0] == y[0] && x[1] == y[1]; };
-  edges.erase(std::unique(edges.begin(), edges.end(), same_edge), edges.end());
-  return edges;
 }
 
 double edge_length(const Mesh& mesh, Index a, Index b) {
@@ -53,10 +55,10 @@ double edge_length(const Mesh& mesh, Index a, Index b) {
 template <class Keep>
 std::vector<EdgeCandidate> edge_candidates(const Workspace& ws, Keep keep, bool longest_first) {
   std::vector<EdgeCandidate> out;
-  for (const auto& [a, b, tet] : counted_edges(ws)) {
+  for_each_counted_edge(ws, [&](Index a, Index b, Index tet) {
     const double length = edge_length(ws.mesh, a, b);
     if (keep(length, ws.target(a, b))) out.push_back({length, a, b, tet});
-  }
+  });
   std::sort(out.begin(), out.end(), [&](const EdgeCandidate& x, const EdgeCandidate& y) {
     if (x.length != y.length) return longest_first ? x.length > y.length : x.length < y.length;
     return std::tie(x.a, x.b) < std::tie(y.a, y.b);
@@ -177,7 +179,8 @@ std::size_t collapse_pass(Workspace& ws) {
            edge_length(ws.mesh, e.a, e.b) < below * ws.target(e.a, e.b);
   };
   const bool parallel = tbb::this_task_arena::max_concurrency() > 1;
-  const std::size_t batch = parallel ? kCollapseBatch : candidates.size();
+  // On one thread nothing is decided ahead: the batches only bound `decided`.
+  const std::size_t batch = kCollapseBatch;
   TouchedVertices touched(ws.mesh.vertex_slots());
   std::vector<EdgeCollapse> decided;
   std::size_t done = 0;
