@@ -4,7 +4,7 @@
 
 #include <mr/core/errors.h>
 #if MR_HAVE_OUTER_HULL
-#include <mr/volume/outer_hull.h>
+#include <mr/volume/outer_hull_module.h>
 #endif
 
 #include <algorithm>
@@ -37,14 +37,14 @@ OuterHull outer_hull_of(const TriangleSoup& input, double epsilon) {
   // A probe on a coarse grid tells how many faces a finer one would make:
   // they grow as the inverse square of the voxel size.
   options.voxel_size = longest / kHullProbeVoxelsASide;
-  const double probe_faces = double(volume::outer_hull(input, options).triangles.size());
+  const double probe_faces = double(volume::outer_hull_from_module(input, options).triangles.size());
   options.voxel_size = std::max({longest / kHullVoxelsASide, 0.5 * epsilon,
                                  options.voxel_size * std::sqrt(probe_faces / double(kHullMaxFaces))});
-  hull.surface = volume::outer_hull(input, options);
+  hull.surface = volume::outer_hull_from_module(input, options);
   // Detail the probe smoothed away can still make too many.
   for (int coarser = 0; coarser < 2 && hull.surface.triangles.size() > kHullMaxFaces; ++coarser) {
     options.voxel_size *= 1.05 * std::sqrt(double(hull.surface.triangles.size()) / double(kHullMaxFaces));
-    hull.surface = volume::outer_hull(input, options);
+    hull.surface = volume::outer_hull_from_module(input, options);
   }
   hull.voxel_size = options.voxel_size;
   hull.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
