@@ -17,16 +17,17 @@ class VdbModule {
     std::call_once(registered_, [this] {
       const auto entry = reinterpret_cast<void (*)(io::Registry*)>(module_.symbol("mr_register_vdb_formats"));
       entry(&registry_);
+      format_ = registry_.by_name("vdb");
     });
-    const io::Format* format = registry_.by_name("vdb");
-    if (!format) throw RunError("the plugin module libmr_vdb_io.so registered no format \"vdb\"");
-    return *format;
+    if (!format_) throw RunError("the plugin module libmr_vdb_io.so registered no format \"vdb\"");
+    return *format_;
   }
 
  private:
   PluginModule module_{"libmr_vdb_io.so", MR_VDB_MODULE_BUILD_PATH};
   std::once_flag registered_;
   io::Registry registry_;
+  const io::Format* format_ = nullptr;
 };
 
 }  // namespace
