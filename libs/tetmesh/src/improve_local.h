@@ -50,6 +50,14 @@ class Workspace {
   std::vector<double> field_scale;
   /// ImproveOptions::release_junctions.
   bool release_junctions = false;
+  /// Whether a vertex of a bad tet smooths on a soft maximum of its star's
+  /// energies instead of their sum (improve_smooth.cpp): in the polishes
+  /// only, where a pass is kept only if it lowers the largest energy. In
+  /// every pass, or once few tets were bad, it sent the passes elsewhere,
+  /// better on some models and worse on others (thingi10k/55581 18.9 ->
+  /// 10.0, thingi10k/96582 30.5 -> 6,048; a cube and a grazing copy, open,
+  /// 12.9 -> 18.4).
+  bool soft_max_smoothing = false;
   /// Edges shorter than this share of their target are collapsed (longer
   /// than 4/3 of it split). 4/5 as fTetWild by default; with a sizing field
   /// 2/3, so that the halves of a split edge are never collapse candidates
