@@ -50,14 +50,6 @@ class Workspace {
   std::vector<double> field_scale;
   /// ImproveOptions::release_junctions.
   bool release_junctions = false;
-  /// Whether a vertex of a bad tet smooths on a soft maximum of its star's
-  /// energies instead of their sum (improve_smooth.cpp): in the polishes
-  /// only, where a pass is kept only if it lowers the largest energy. In
-  /// every pass, or once few tets were bad, it sent the passes elsewhere,
-  /// better on some models and worse on others (thingi10k/55581 18.9 ->
-  /// 10.0, thingi10k/96582 30.5 -> 6,048; a cube and a grazing copy, open,
-  /// 12.9 -> 18.4).
-  bool soft_max_smoothing = false;
   /// Edges shorter than this share of their target are collapsed (longer
   /// than 4/3 of it split). 4/5 as fTetWild by default; with a sizing field
   /// 2/3, so that the halves of a split edge are never collapse candidates
@@ -206,7 +198,9 @@ bool try_face_swap(Workspace& ws, Index t, int f);
 
 /// Moves v to lower the AMIPS energy of its star (Newton with line search)
 /// within its constraints. `star` are its tets. Touches only v's position.
-bool try_smooth(const Workspace& ws, Index v, std::span<const Index> star);
+/// With `soft_max`, a vertex of a tet at or above the stop energy lowers a
+/// soft maximum of its star's energies instead of their sum.
+bool try_smooth(const Workspace& ws, Index v, std::span<const Index> star, bool soft_max = false);
 /// How freely try_smooth may move vertex v (`star`: its tets), freest first:
 /// anywhere; within the tracked surface's tangent plane or its box face(s);
 /// only where its tets are bad, back onto its input triangles (a crease or
@@ -226,7 +220,7 @@ struct SwapCounts {
   std::size_t s32 = 0, s23 = 0, s44 = 0, removals = 0;
 };
 SwapCounts swap_pass(Workspace& ws);
-std::size_t smooth_pass(Workspace& ws);
+std::size_t smooth_pass(Workspace& ws, bool soft_max);
 struct SizingUpdate {
   std::size_t shrunk = 0;  ///< vertices whose local target shrank
   bool hit_floor = false;  ///< some target would have gone below the floor

@@ -249,7 +249,7 @@ SwapCounts swap_pass(Workspace& ws) {
   return counts;
 }
 
-std::size_t smooth_pass(Workspace& ws) {
+std::size_t smooth_pass(Workspace& ws, bool soft_max) {
   const VertexTets incidence(ws.mesh);
   std::vector<char> moved(ws.mesh.vertex_slots(), 0);
   for (const std::vector<Index>& vertices : colour_classes(ws, incidence)) {
@@ -257,7 +257,7 @@ std::size_t smooth_pass(Workspace& ws) {
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
                           const Index v = vertices[i];
-                          moved[v] = try_smooth(ws, v, incidence.of(v)) ? 1 : 0;
+                          moved[v] = try_smooth(ws, v, incidence.of(v), soft_max) ? 1 : 0;
                         }
                       });
   }

@@ -1,7 +1,7 @@
 // Vertex smoothing: Newton steps on the summed conformal AMIPS energy of a
-// vertex's tets (in the last polish, on a soft maximum of them where one of
-// its tets is at or above the stop energy), with a backtracking line search that accepts
-// only positions keeping every tet strictly positive (exact), the star's
+// vertex's tets (in a polish, on a soft maximum of them where one of its
+// tets is at or above the stop energy), with a backtracking line search
+// that accepts only positions keeping every tet strictly positive (exact), the star's
 // largest energy not higher, and the vertex's tracked faces inside the
 // envelope. Surface vertices move in their tangent plane, hull vertices
 // within their box face(s); vertices on surface boundaries, creases, or
@@ -346,7 +346,7 @@ bool newton_step(const Workspace& ws, Index v, std::span<const Index> star, std:
 
 }  // namespace
 
-bool try_smooth(const Workspace& ws, Index v, std::span<const Index> star) {
+bool try_smooth(const Workspace& ws, Index v, std::span<const Index> star, bool soft_max) {
   Freedom freedom = freedom_of(ws.mesh, v, star);
   if (freedom.fixed && !releasable(ws, freedom)) return false;
   // The energy of the tets that count; every tet of the star stays positive.
@@ -361,10 +361,9 @@ bool try_smooth(const Workspace& ws, Index v, std::span<const Index> star) {
     freedom.fixed = false;
     freedom.project = true;
   }
-  // In the last polish, a vertex of a bad tet takes soft-maximum steps
-  // while they lower its star's largest energy (Workspace::soft_max_smoothing).
-  if (before.max < ws.stop_energy || !ws.soft_max_smoothing)
-    return newton_step(ws, v, star, tets, freedom, {});
+  // With soft_max (in a polish, see run_pass), a vertex of a bad tet takes
+  // soft-maximum steps while they lower its star's largest energy.
+  if (before.max < ws.stop_energy || !soft_max) return newton_step(ws, v, star, tets, freedom, {});
   bool moved = false;
   for (int step = 0; step < kSoftMaxSteps; ++step) {
     const double worst = star_energy(ws.mesh.position(v).approx, tets, false).max;

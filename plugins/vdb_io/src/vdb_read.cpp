@@ -4,6 +4,7 @@
 #include "vdb_level_set.h"
 
 #include <mr/core/errors.h>
+#include <mr/core/union_find.h>
 
 #include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
@@ -15,7 +16,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <numeric>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -134,39 +134,19 @@ void check_no_active_tiles(const FloatGrid& grid, const std::string& path) {
 
 // At sharp edges and corners volumeToMesh gives a polygon corners at one
 // position: such a polygon is an edge, or a triangle, rather than the face
-// it names. Its corners at one position become one vertex here (the
-// lowest-numbered), and a polygon left with fewer than three corners is
-// dropped: kept, a cube's surface was not watertight after welding
-// identical positions (786 zero-area faces at the default voxel size).
-// Only corners of one polygon are merged: points of two sheets of the
-// level set that touch stay apart, as volumeToMesh made them.
-class PolygonWeld {
- public:
-  explicit PolygonWeld(const std::vector<openvdb::Vec3s>& points) : points_(points), parent_(points.size()) {
-    std::iota(parent_.begin(), parent_.end(), Index(0));
-  }
-  template <class Polygon>
-  void add(const Polygon& corners, int n) {
-    for (int i = 0; i < n; ++i)
-      for (int j = i + 1; j < n; ++j)
-        if (points_[corners[i]] == points_[corners[j]]) join(corners[i], corners[j]);
-  }
-  Index vertex_of(Index point) {
-    while (parent_[point] != point) point = parent_[point] = parent_[parent_[point]];
-    return point;
-  }
-
- private:
-  void join(Index a, Index b) {
-    a = vertex_of(a), b = vertex_of(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-  const std::vector<openvdb::Vec3s>& points_;
-  std::vector<Index> parent_;
-};
+// it names. Its corners at one position become one vertex here, and a polygon left with fewer than three
+// corners is dropped: kept, a cube's surface was not watertight after welding identical positions (786
+// zero-area faces at the default voxel size). Only corners of one polygon are merged: points of two sheets of
+// the level set that touch stay apart, as volumeToMesh made them.
+template <class Polygon>
+void weld_corners(const std::vector<openvdb::Vec3s>& points, const Polygon& corners, int n, UnionFind& weld) {
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      if (points[corners[i]] == points[corners[j]]) weld.unite(corners[i], corners[j]);
+}
 
 void add_triangle(TriangleSoup& soup, Index a, Index b, Index c) {
-  if (a == b || b == c || c == a) return;  // an edge (see PolygonWeld)
+  if (a == b || b == c || c == a) return;  // an edge (see weld_corners)
   // volumeToMesh winds polygons clockwise seen from outside for level sets
   // (negative inside); we want counter-clockwise, i.e. outward normals.
   soup.triangles.push_back({a, c, b});
@@ -189,13 +169,13 @@ TriangleSoup mesh_level_set(const FloatGrid& grid, const io::LevelSetReadOptions
   std::vector<openvdb::Vec3I> triangles;
   std::vector<openvdb::Vec4I> quads;
   openvdb::tools::volumeToMesh(grid, points, triangles, quads, options.isovalue, options.adaptivity);
-  PolygonWeld weld(points);
-  for (const openvdb::Vec3I& t : triangles) weld.add(t, 3);
-  for (const openvdb::Vec4I& q : quads) weld.add(q, 4);
+  UnionFind weld(points.size());
+  for (const openvdb::Vec3I& t : triangles) weld_corners(points, t, 3, weld);
+  for (const openvdb::Vec4I& q : quads) weld_corners(points, q, 4, weld);
   TriangleSoup soup;
   soup.positions.reserve(points.size());
   for (const openvdb::Vec3s& p : points) soup.positions.emplace_back(p.x(), p.y(), p.z());
-  const auto v = [&](unsigned point) { return weld.vertex_of(point); };
+  const auto v = [&](unsigned point) { return Index(weld.find(point)); };
   soup.triangles.reserve(triangles.size() + 2 * quads.size());
   for (const openvdb::Vec3I& t : triangles) add_triangle(soup, v(t[0]), v(t[1]), v(t[2]));
   for (const openvdb::Vec4I& q : quads) add_quad(soup, {v(q[0]), v(q[1]), v(q[2]), v(q[3])});
