@@ -23,19 +23,21 @@ class SampledEnvelope final : public Envelope {
   // lies in (accept^2, limit^2], infinity beyond limit (see the tree), and
   // the input triangle that gave it.
   using Sample = spatial::AabbTree::BoundedHit;
-  Sample sample(const Vec3d& p, double accept) const;
+  class Nearby;
+  Sample sample(const Nearby& nearby, const Vec3d& p, double accept) const;
   bool accepts(double squared_distance, double covering_radius) const;
   // Whether the corners (hence their hull) are all within limit of one input triangle.
-  bool near_one_input_triangle(std::initializer_list<Vec3d> corners) const;
+  bool near_one_input_triangle(const Nearby& nearby, std::initializer_list<Vec3d> corners) const;
   // The same, trying only the triangles that gave the corners' samples: a
   // few distances instead of a search (for the pieces of a bisection).
   template <std::size_t N>
   bool near_a_sampled_triangle(const std::array<Vec3d, N>& corners,
                                const std::array<Sample, N>& samples) const;
 
-  bool adaptive_segment(const Vec3d& a, const Vec3d& b, Sample da, Sample db) const;
-  bool adaptive_triangle(const std::array<Vec3d, 3>& v, const std::array<Sample, 3>& d) const;
-  bool adaptive_from_corners(const std::array<Vec3d, 3>& v) const;
+  bool adaptive_segment(const Nearby& nearby, const Vec3d& a, const Vec3d& b, Sample da, Sample db) const;
+  bool adaptive_triangle(const Nearby& nearby, const std::array<Vec3d, 3>& v,
+                         const std::array<Sample, 3>& d) const;
+  bool adaptive_from_corners(const Nearby& nearby, const std::array<Vec3d, 3>& v) const;
   bool lattice_segment(const Vec3d& a, const Vec3d& b) const;
   bool lattice_triangle(const Vec3d& a, const Vec3d& b, const Vec3d& c) const;
 

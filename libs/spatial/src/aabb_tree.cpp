@@ -5,6 +5,8 @@
 #include <mr/spatial/triangle_distance.h>
 
 #include <algorithm>
+#include <limits>
+#include <span>
 #include <utility>
 
 namespace mr::spatial {
@@ -186,7 +188,8 @@ bool AabbTree::one_triangle_near_all(std::span<const Vec3d> points, double r_sq)
   return found;
 }
 
-void AabbTree::triangles_in_box(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const {
+template <class Visitor>
+void AabbTree::for_each_slot_in_box(const Vec3d& lo, const Vec3d& hi, Visitor&& visit) const {
   const auto meets = [&](const Vec3d& box_lo, const Vec3d& box_hi) {
     return (box_lo.array() <= hi.array()).all() && (lo.array() <= box_hi.array()).all();
   };
@@ -194,7 +197,6 @@ void AabbTree::triangles_in_box(const Vec3d& lo, const Vec3d& hi, std::vector<st
     return meets(Vec3d(node.lo[0], node.lo[1], node.lo[2]), Vec3d(node.hi[0], node.hi[1], node.hi[2]));
   };
   if (nodes_.empty() || !node_meets(nodes_[0])) return;
-  const std::size_t from = out.size();
   std::uint32_t stack[kMaxStack];
   int top = 0;
   stack[top++] = 0;
@@ -204,14 +206,83 @@ void AabbTree::triangles_in_box(const Vec3d& lo, const Vec3d& hi, std::vector<st
     if (node.count != 0) {
       for (std::uint32_t slot = node.first_or_right; slot < node.first_or_right + node.count; ++slot) {
         const AabbBox box = slot_box(slot);
-        if (meets(box.lo, box.hi)) out.push_back(triangle_ids_[slot]);
+        if (meets(box.lo, box.hi) && !visit(slot)) return;
       }
       continue;
     }
     for (const std::uint32_t child : {index + 1, node.first_or_right})
       if (node_meets(nodes_[child])) stack[top++] = child;
   }
+}
+
+void AabbTree::triangles_in_box(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const {
+  const std::size_t from = out.size();
+  for_each_slot_in_box(lo, hi, [&](std::uint32_t slot) {
+    out.push_back(triangle_ids_[slot]);
+    return true;
+  });
   if (has_pieces()) keep_each_once(out, from);
+}
+
+LocalTriangles::LocalTriangles(const AabbTree& tree, const Vec3d& lo, const Vec3d& hi, std::size_t max_count)
+    : tree_(&tree) {
+  // Pieces repeat a triangle: up to this many slots are gathered before
+  // they are told apart.
+  const std::size_t most_slots = 16 * max_count + 16;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> found;  // {triangle, slot}
+  tree.for_each_slot_in_box(lo, hi, [&](std::uint32_t slot) {
+    found.emplace_back(tree.triangle_ids_[slot], slot);
+    return found.size() <= most_slots;
+  });
+  if (found.size() > most_slots) {
+    overflowed_ = true;
+    return;
+  }
+  // Pieces of one triangle: keep its first slot (distances are to the whole triangle).
+  std::sort(found.begin(), found.end());
+  const auto same_triangle = [](const auto& x, const auto& y) { return x.first == y.first; };
+  found.erase(std::unique(found.begin(), found.end(), same_triangle), found.end());
+  if (found.size() > max_count) {
+    overflowed_ = true;
+    return;
+  }
+  for (const auto& [triangle, slot] : found) {
+    const Vec3d* c = &tree.corners_[3 * std::size_t{slot}];
+    slots_.push_back(slot);
+    boxes_.push_back({c[0].cwiseMin(c[1]).cwiseMin(c[2]), c[0].cwiseMax(c[1]).cwiseMax(c[2])});
+  }
+}
+
+AabbTree::BoundedHit LocalTriangles::nearest_bounded(const Vec3d& p, double accept_sq, double cap_sq) const {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  if (!(cap_sq >= 0.0)) return {kInfinity, AabbTree::kNoSlot};
+  double bound_sq = cap_sq;
+  std::uint32_t found = AabbTree::kNoSlot;
+  for (std::size_t i = 0; i < slots_.size(); ++i) {
+    if (box_squared_distance(boxes_[i], p) > bound_sq) continue;
+    const Vec3d* c = &tree_->corners_[3 * std::size_t{slots_[i]}];
+    const double d_sq = squared_distance_to_triangle(p, c[0], c[1], c[2]);
+    if (d_sq > bound_sq) continue;
+    bound_sq = d_sq;
+    found = slots_[i];
+    if (d_sq <= accept_sq) break;
+  }
+  return found != AabbTree::kNoSlot ? AabbTree::BoundedHit{bound_sq, found}
+                                    : AabbTree::BoundedHit{kInfinity, AabbTree::kNoSlot};
+}
+
+bool LocalTriangles::one_triangle_near_all(std::span<const Vec3d> points, double r_sq) const {
+  if (!(r_sq >= 0.0) || points.empty()) return false;
+  for (std::size_t i = 0; i < slots_.size(); ++i) {
+    const auto box_near = [&](const Vec3d& p) { return box_squared_distance(boxes_[i], p) <= r_sq; };
+    if (!std::all_of(points.begin(), points.end(), box_near)) continue;
+    const Vec3d* c = &tree_->corners_[3 * std::size_t{slots_[i]}];
+    if (std::all_of(points.rbegin(), points.rend(), [&](const Vec3d& p) {
+          return squared_distance_to_triangle(p, c[0], c[1], c[2]) <= r_sq;
+        }))
+      return true;
+  }
+  return false;
 }
 
 bool AabbTree::any_within(const Vec3d& p, double r) const {

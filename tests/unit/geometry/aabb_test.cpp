@@ -335,3 +335,43 @@ TEST_CASE("AABB tree: triangles spanning the soup agree with brute force", "[aab
   CHECK(boxes_with_triangles > 50);  // both answers occur
   CHECK(boxes_with_triangles < 250);
 }
+
+TEST_CASE("AABB tree: the triangles near a box answer as the tree does inside it", "[aabb]") {
+  std::mt19937_64 rng(11);
+  for (const bool cut : {false, true}) {
+    const mr::TriangleSoup soup = random_soup(rng, 400);
+    const AabbTree tree(soup, {.cut_large_triangles = cut});
+    const double radius = 0.03;
+    int listed = 0, overflowed = 0;
+    for (int q = 0; q < 200; ++q) {
+      const Vec3d a = random_point(rng, -0.05, 1.05);
+      const Vec3d b = a + random_point(rng, -0.05, 0.05);
+      const Vec3d lo = a.cwiseMin(b) - Vec3d::Constant(radius), hi = a.cwiseMax(b) + Vec3d::Constant(radius);
+      const mr::spatial::LocalTriangles local(tree, lo, hi, q % 2 == 0 ? 24 : 3);
+      if (local.overflowed()) {
+        ++overflowed;
+        CHECK(local.size() == 0);
+        continue;
+      }
+      ++listed;
+      for (int k = 0; k <= 8; ++k) {
+        const Vec3d p = a + (k / 8.0) * (b - a);
+        const double r_sq = radius * radius;
+        // Beyond the accepting radius the distance is exact, as the tree's.
+        const auto exact = tree.nearest_bounded(p, 0.0, r_sq);
+        const auto mine = local.nearest_bounded(p, 0.0, r_sq);
+        CHECK(mine.squared_distance == exact.squared_distance);
+        // With early acceptance, an upper bound, never above the accepting radius when the tree found one.
+        const auto early = local.nearest_bounded(p, r_sq, r_sq);
+        CHECK((early.squared_distance <= r_sq) == (exact.squared_distance <= r_sq));
+        CHECK(early.squared_distance >= exact.squared_distance);
+        if (early.slot != AabbTree::kNoSlot) CHECK(tree.slot_near_all(early.slot, std::span(&p, 1), r_sq));
+      }
+      const std::array<Vec3d, 2> ends{a, b};
+      CHECK(local.one_triangle_near_all(ends, radius * radius) ==
+            tree.one_triangle_near_all(ends, radius * radius));
+    }
+    CHECK(listed > 50);  // both cases occur
+    CHECK(overflowed > 0);
+  }
+}

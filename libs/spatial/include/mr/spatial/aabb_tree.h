@@ -114,6 +114,10 @@ class AabbTree {
   /// Whether some triangle was cut into pieces (aabb_build.cpp): then one
   /// triangle fills several slots.
   bool has_pieces() const { return triangle_ids_.size() != triangle_count_; }
+  /// Calls visit(slot) for every slot whose box (a piece's box, with pieces)
+  /// meets the closed box [lo, hi], until it returns false.
+  template <class Visitor>
+  void for_each_slot_in_box(const Vec3d& lo, const Vec3d& hi, Visitor&& visit) const;
 
   std::vector<Node> nodes_;                  // depth-first order, root first
   std::vector<Vec3d> corners_;               // 3 per slot (its whole triangle's), in leaf order
@@ -123,6 +127,34 @@ class AabbTree {
   std::size_t triangle_count_ = 0;
 
   friend class AabbBuilder;
+  friend class LocalTriangles;
+};
+
+/// The triangles of a tree that meet a box, each once, for many queries
+/// near one place (an envelope test bisecting one face): searched one by
+/// one they answer every query whose search ball lies in the box as the
+/// tree does, without a descent from the root per query. Slots are the
+/// tree's (AabbTree::slot_near_all takes them). A view: the tree must outlive it.
+class LocalTriangles {
+ public:
+  /// The triangles of `tree` whose box meets the closed box [lo, hi]
+  /// (compared exactly); none, and overflowed(), when more than `max_count` do.
+  LocalTriangles(const AabbTree& tree, const Vec3d& lo, const Vec3d& hi, std::size_t max_count);
+
+  bool overflowed() const { return overflowed_; }
+  std::size_t size() const { return slots_.size(); }
+
+  /// AabbTree::nearest_bounded, for p whose ball of squared radius cap_sq lies in the box.
+  AabbTree::BoundedHit nearest_bounded(const Vec3d& p, double accept_sq, double cap_sq) const;
+  /// AabbTree::one_triangle_near_all, for points whose balls of squared
+  /// radius r_sq lie in the box.
+  bool one_triangle_near_all(std::span<const Vec3d> points, double r_sq) const;
+
+ private:
+  const AabbTree* tree_;
+  std::vector<std::uint32_t> slots_;  ///< one slot per triangle
+  std::vector<AabbBox> boxes_;        ///< each slot's whole triangle's box
+  bool overflowed_ = false;
 };
 
 inline AabbBox AabbTree::slot_box(std::uint32_t slot) const {
