@@ -338,6 +338,12 @@ TEST_CASE("improve: same output for 1 and 2 threads", "[improve]") {
   CHECK(s1.splits == s2.splits);
   CHECK(s1.collapses == s2.collapses);
   CHECK(s1.smoothing_moves == s2.smoothing_moves);
+  // Swaps are planned in parallel batches on two threads (swap_pass).
+  CHECK(s1.swaps_32 + s1.swaps_23 + s1.swaps_44 + s1.edge_removals > 0);
+  CHECK(s1.swaps_32 == s2.swaps_32);
+  CHECK(s1.swaps_23 == s2.swaps_23);
+  CHECK(s1.swaps_44 == s2.swaps_44);
+  CHECK(s1.edge_removals == s2.edge_removals);
   CHECK(s1.after.max_amips == s2.after.max_amips);
   const TetMesh a = to_tet_mesh(one.mesh), b = to_tet_mesh(two.mesh);
   CHECK(a.positions == b.positions);

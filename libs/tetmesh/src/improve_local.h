@@ -190,11 +190,23 @@ struct EdgeCollapse {
 };
 EdgeCollapse decide_edge_collapse(const Workspace& ws, Index a, Index b);
 
-/// Edge removal of edge (a, b) of tet `hint`: the n tets around it (3 to 7)
-/// become 2n - 4; returns n, or 0 when nothing lowers the largest energy.
-int try_edge_swap(Workspace& ws, Index a, Index b, Index hint);
-/// Face removal (2-3) of face `f` of tet `t`.
-bool try_face_swap(Workspace& ws, Index t, int f);
+/// A swap that passed every check: `old_tets` become `new_tets`. `kind`: 2
+/// for a 2-3 face removal, else the number of tets around the removed edge
+/// (3: a 3-2 swap, 4: 4-4, 5 to 7: edge removal).
+struct SwapPlan {
+  std::vector<Index> old_tets;
+  std::vector<Tet> new_tets;
+  int kind = 0;
+};
+/// Edge removal of edge (a, b) of live tet `hint`: the n tets around it (3
+/// to 7) become 2n - 4, if that lowers their largest energy. Changes nothing.
+std::optional<SwapPlan> plan_edge_swap(const Workspace& ws, Index a, Index b, Index hint);
+/// Face removal (2-3) of face `f` of live tet `t`. Changes nothing.
+std::optional<SwapPlan> plan_face_swap(const Workspace& ws, Index t, int f);
+/// The first swap of live tet t that passes: its edges in corner order,
+/// then its faces. Changes nothing (several threads may plan at once).
+std::optional<SwapPlan> plan_tet_swap(const Workspace& ws, Index t);
+void apply_swap(Workspace& ws, const SwapPlan& plan);
 
 /// Moves v to lower the AMIPS energy of its star (Newton with line search)
 /// within its constraints. `star` are its tets. Touches only v's position.

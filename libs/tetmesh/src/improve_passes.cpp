@@ -12,6 +12,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <optional>
 #include <tuple>
 
 namespace mr::tetmesh::improve_detail {
@@ -212,6 +213,25 @@ std::size_t collapse_pass(Workspace& ws) {
   return done;
 }
 
+namespace {
+
+void count_swap(int kind, SwapCounts& counts) {
+  counts.s23 += kind == 2;
+  counts.s32 += kind == 3;
+  counts.s44 += kind == 4;
+  counts.removals += kind > 4;
+}
+
+}  // namespace
+
+// Swaps are planned in batches, in parallel, on the mesh as the batch found
+// it, then applied in order, as collapses are (see kCollapseBatch). A plan
+// for tet t read the tets around its edges and across its faces, each with
+// two of t's corners or more; a swap applied before it changes only tets
+// whose corners it marks, so the plan stands unless two of t's corners are
+// marked, and is made again then. The result is the one swapping tet by tet.
+constexpr std::size_t kSwapBatch = 64;
+
 SwapCounts swap_pass(Workspace& ws) {
   constexpr double kWorthSwapping = 4.0;  // a regular tet has 3
   const Mesh& mesh = ws.mesh;
@@ -224,27 +244,37 @@ SwapCounts swap_pass(Workspace& ws) {
   std::sort(bad.begin(), bad.end());
   std::vector<Tet> corners;
   for (const auto& [minus_energy, t] : bad) corners.push_back(mesh.tet(t));
-
-  SwapCounts counts;
-  for (std::size_t i = 0; i < bad.size(); ++i) {
+  // Slots are reused: the tet must still be the one collected.
+  const auto unchanged = [&](std::size_t i) {
     const Index t = bad[i].second;
-    // Slots are reused: the tet must still be the one collected.
-    if (!mesh.tet_alive(t) || mesh.tet(t) != corners[i]) continue;
-    bool swapped = false;
-    const Tet c = corners[i];
-    for (int x = 0; x < 4 && !swapped; ++x) {
-      for (int y = x + 1; y < 4 && !swapped; ++y) {
-        const int kind = try_edge_swap(ws, c[x], c[y], t);
-        counts.s32 += kind == 3;
-        counts.s44 += kind == 4;
-        counts.removals += kind > 4;
-        swapped = kind != 0;
-      }
+    return mesh.tet_alive(t) && mesh.tet(t) == corners[i];
+  };
+
+  const bool parallel = tbb::this_task_arena::max_concurrency() > 1;
+  TouchedVertices touched(mesh.vertex_slots());
+  std::vector<std::optional<SwapPlan>> planned;
+  SwapCounts counts;
+  for (std::size_t first = 0; first < bad.size(); first += kSwapBatch) {
+    const std::size_t last = std::min(bad.size(), first + kSwapBatch);
+    planned.assign(last - first, std::nullopt);
+    if (parallel)
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 4),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t i = range.begin(); i != range.end(); ++i)
+                            if (unchanged(i)) planned[i - first] = plan_tet_swap(ws, bad[i].second);
+                        });
+    for (std::size_t i = first; i < last; ++i) {
+      if (!unchanged(i)) continue;
+      const Tet& c = corners[i];
+      const auto marked = std::count_if(c.begin(), c.end(), [&](Index v) { return touched[v]; });
+      std::optional<SwapPlan>& plan = planned[i - first];
+      if (!parallel || marked >= 2) plan = plan_tet_swap(ws, bad[i].second);
+      if (!plan) continue;
+      for (const Index t : plan->old_tets) touched.mark(mesh.tet(t));
+      apply_swap(ws, *plan);
+      count_swap(plan->kind, counts);
     }
-    for (int f = 0; f < 4 && !swapped; ++f) {
-      swapped = try_face_swap(ws, t, f);
-      counts.s23 += swapped;
-    }
+    touched.clear();
   }
   return counts;
 }

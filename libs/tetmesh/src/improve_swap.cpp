@@ -8,8 +8,11 @@
 
 #include "improve_local.h"
 
+#include <mr/tetmesh/incidence.h>
+
 #include <algorithm>
 #include <limits>
+#include <optional>
 
 namespace mr::tetmesh::improve_detail {
 namespace {
@@ -151,37 +154,55 @@ class RingTriangulation {
 
 }  // namespace
 
-int try_edge_swap(Workspace& ws, Index a, Index b, Index hint) {
-  Mesh& mesh = ws.mesh;
-  const std::vector<Index> tets = ws.edge_tets(a, b, hint);
-  if (tets.size() < 3 || tets.size() > std::size_t(kMaxRing)) return 0;
-  if (edge_has_tracked_face(mesh, tets, a, b) || ws.mixes_decisions(tets)) return 0;
+std::optional<SwapPlan> plan_edge_swap(const Workspace& ws, Index a, Index b, Index hint) {
+  const Mesh& mesh = ws.mesh;
+  const std::vector<Index> tets = tets_around_edge(mesh, a, b, hint);
+  if (tets.size() < 3 || tets.size() > std::size_t(kMaxRing)) return std::nullopt;
+  if (edge_has_tracked_face(mesh, tets, a, b) || ws.mixes_decisions(tets)) return std::nullopt;
   const EdgeRing ring = edge_ring(mesh, tets, a, b);
-  if (ring.tets.empty()) return 0;
+  if (ring.tets.empty()) return std::nullopt;
 
   const double old_max = max_energy_of(mesh, tets);
-  std::vector<Tet> new_tets;
-  const double new_max = RingTriangulation(mesh, ring, a, b).solve(new_tets);
-  if (!(new_max < old_max) || !all_positive(mesh, new_tets)) return 0;
-  replace_tets(ws, ring.tets, new_tets, same_faces);
-  return int(tets.size());
+  SwapPlan plan;
+  const double new_max = RingTriangulation(mesh, ring, a, b).solve(plan.new_tets);
+  if (!(new_max < old_max) || !all_positive(mesh, plan.new_tets)) return std::nullopt;
+  plan.old_tets = ring.tets;
+  plan.kind = int(tets.size());
+  return plan;
 }
 
-bool try_face_swap(Workspace& ws, Index t, int f) {
-  Mesh& mesh = ws.mesh;
+std::optional<SwapPlan> plan_face_swap(const Workspace& ws, Index t, int f) {
+  const Mesh& mesh = ws.mesh;
   const Index u = mesh.neighbour(t, f);
-  if (u == kNoTet || mesh.is_surface_face(t, f)) return false;
+  if (u == kNoTet || mesh.is_surface_face(t, f)) return std::nullopt;
   const int fu = mesh.face_towards(u, t);
-  if (fu < 0) return false;
+  if (fu < 0) return std::nullopt;
   const Index b = mesh.tet(u)[fu];
-  std::vector<Tet> new_tets;
-  for (const Index w : mesh.face_vertices(t, f)) new_tets.push_back(replaced(mesh.tet(t), w, b));
-  const std::array<Index, 2> old_tets{t, u};
-  if (ws.mixes_decisions(old_tets)) return false;
-  if (max_energy(mesh, new_tets) >= max_energy_of(mesh, old_tets)) return false;
-  if (!all_positive(mesh, new_tets)) return false;
-  replace_tets(ws, old_tets, new_tets, same_faces);
-  return true;
+  SwapPlan plan;
+  for (const Index w : mesh.face_vertices(t, f)) plan.new_tets.push_back(replaced(mesh.tet(t), w, b));
+  plan.old_tets = {t, u};
+  if (ws.mixes_decisions(plan.old_tets)) return std::nullopt;
+  if (max_energy(mesh, plan.new_tets) >= max_energy_of(mesh, plan.old_tets)) return std::nullopt;
+  if (!all_positive(mesh, plan.new_tets)) return std::nullopt;
+  plan.kind = 2;
+  return plan;
+}
+
+std::optional<SwapPlan> plan_tet_swap(const Workspace& ws, Index t) {
+  const Tet c = ws.mesh.tet(t);
+  for (int x = 0; x < 4; ++x) {
+    for (int y = x + 1; y < 4; ++y) {
+      if (std::optional<SwapPlan> plan = plan_edge_swap(ws, c[x], c[y], t)) return plan;
+    }
+  }
+  for (int f = 0; f < 4; ++f) {
+    if (std::optional<SwapPlan> plan = plan_face_swap(ws, t, f)) return plan;
+  }
+  return std::nullopt;
+}
+
+void apply_swap(Workspace& ws, const SwapPlan& plan) {
+  replace_tets(ws, plan.old_tets, plan.new_tets, same_faces);
 }
 
 }  // namespace mr::tetmesh::improve_detail
