@@ -166,6 +166,23 @@ bool vertex_on_hull(const Mesh& mesh, std::span<const Index> tets, Index v);
 /// `hint`: as for Workspace::edge_tets.
 Index try_split(Workspace& ws, Index a, Index b, const HybridPoint& at, bool check_envelope,
                 Index hint = kNoTet);
+/// A split of edge (a, b) that passed every check: each of `old_tets` (the
+/// tets around the edge) becomes two of `new_tets` (its origin), with the
+/// new vertex, at `at` with `flags`, standing as kNewVertex.
+struct SplitPlan {
+  Index a = kNoVertex, b = kNoVertex;
+  HybridPoint at;
+  std::vector<Index> old_tets;
+  std::vector<Tet> new_tets;
+  std::vector<std::size_t> origin;
+  std::uint8_t flags = 0;
+};
+/// The checks of try_split on the tets around the edge; changes nothing
+/// (several threads may plan at once).
+std::optional<SplitPlan> plan_split(const Workspace& ws, Index a, Index b, const HybridPoint& at,
+                                    bool check_envelope, std::vector<Index> old_tets);
+/// Returns the new vertex.
+Index apply_split(Workspace& ws, SplitPlan plan);
 
 enum class CollapseGoal { quality, rounding };
 /// Collapses u onto v if every check passes.

@@ -110,16 +110,6 @@ std::vector<double> tet_energies(const Workspace& ws, bool driving_only) {
   return energy;
 }
 
-std::size_t split_pass(Workspace& ws) {
-  std::size_t done = 0;
-  const auto long_edge = [](double length, double target) { return length > 4.0 / 3.0 * target; };
-  for (const EdgeCandidate& e : edge_candidates(ws, long_edge, true)) {
-    const Vec3d middle = 0.5 * (ws.mesh.position(e.a).approx + ws.mesh.position(e.b).approx);
-    if (try_split(ws, e.a, e.b, HybridPoint(middle), true, e.tet) != kNoVertex) ++done;
-  }
-  return done;
-}
-
 // The corners of the tets around a collapsing vertex: the vertices whose
 // stars the collapse changes.
 std::vector<Index> corners_of(const Mesh& mesh, std::span<const Index> star) {
@@ -133,10 +123,12 @@ std::vector<Index> corners_of(const Mesh& mesh, std::span<const Index> star) {
 class TouchedVertices {
  public:
   explicit TouchedVertices(std::size_t slots) : touched_(slots, 0) {}
-  bool operator[](Index v) const { return touched_[v] != 0; }
+  bool operator[](Index v) const { return v < touched_.size() && touched_[v] != 0; }
   void mark(std::span<const Index> vertices) {
-    for (const Index x : vertices)
+    for (const Index x : vertices) {
+      if (x >= touched_.size()) touched_.resize(std::size_t(x) + 1, 0);  // a vertex a split made
       if (!touched_[x]) touched_[x] = 1, marked_.push_back(x);
+    }
   }
   void clear() {
     for (const Index x : marked_) touched_[x] = 0;
@@ -169,6 +161,63 @@ bool collapse_either_way(Workspace& ws, Index a, Index b, TouchedVertices& touch
 // count). Small batches: with 1,024 half of the accepted collapses were
 // decided twice (trimesh/teapot).
 constexpr std::size_t kCollapseBatch = 48;
+
+// Splits are planned in batches, in parallel, then applied in order, as
+// collapses are: a plan reads the tets around its edge, which a split
+// applied before it changed only if it marked both ends; such plans, and
+// those whose collected tet no longer has the edge, are made again.
+constexpr std::size_t kSplitBatch = 64;
+
+std::size_t split_pass(Workspace& ws) {
+  const Mesh& mesh = ws.mesh;
+  const auto long_edge = [](double length, double target) { return length > 4.0 / 3.0 * target; };
+  const std::vector<EdgeCandidate> candidates = edge_candidates(ws, long_edge, true);
+  const auto middle = [&](const EdgeCandidate& e) {
+    return HybridPoint(Vec3d(0.5 * (mesh.position(e.a).approx + mesh.position(e.b).approx)));
+  };
+  const auto has_edge = [&](const EdgeCandidate& e) {
+    return mesh.tet_alive(e.tet) && mesh.corner_of(e.tet, e.a) >= 0 && mesh.corner_of(e.tet, e.b) >= 0;
+  };
+  TouchedVertices touched(mesh.vertex_slots());
+  const auto apply = [&](SplitPlan plan) {
+    for (const Index t : plan.old_tets) touched.mark(mesh.tet(t));
+    apply_split(ws, std::move(plan));
+  };
+  const bool parallel = tbb::this_task_arena::max_concurrency() > 1;
+  std::vector<std::optional<SplitPlan>> planned;
+  std::vector<char> decided;
+  std::size_t done = 0;
+  for (std::size_t first = 0; first < candidates.size(); first += kSplitBatch) {
+    const std::size_t last = std::min(candidates.size(), first + kSplitBatch);
+    planned.assign(last - first, std::nullopt);
+    decided.assign(last - first, 0);
+    if (parallel)
+      tbb::parallel_for(
+          tbb::blocked_range<std::size_t>(first, last, 4), [&](const tbb::blocked_range<std::size_t>& range) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+              const EdgeCandidate& e = candidates[i];
+              if (!has_edge(e)) continue;
+              decided[i - first] = 1;
+              planned[i - first] =
+                  plan_split(ws, e.a, e.b, middle(e), true, tets_around_edge(mesh, e.a, e.b, e.tet));
+            }
+          });
+    for (std::size_t i = first; i < last; ++i) {
+      const EdgeCandidate& e = candidates[i];
+      std::optional<SplitPlan>& plan = planned[i - first];
+      if (!decided[i - first] || (touched[e.a] && touched[e.b])) {
+        std::vector<Index> around = ws.edge_tets(e.a, e.b, e.tet);
+        if (around.empty()) continue;
+        plan = plan_split(ws, e.a, e.b, middle(e), true, std::move(around));
+      }
+      if (!plan) continue;
+      apply(std::move(*plan));
+      ++done;
+    }
+    touched.clear();
+  }
+  return done;
+}
 
 std::size_t collapse_pass(Workspace& ws) {
   const double below = ws.collapse_below;

@@ -4,6 +4,7 @@
 #include "improve_local.h"
 
 #include <algorithm>
+#include <optional>
 
 namespace mr::tetmesh::improve_detail {
 namespace {
@@ -32,21 +33,21 @@ ParentFaces split_parents(Index a, Index b, Index m) {
 
 }  // namespace
 
-Index try_split(Workspace& ws, Index a, Index b, const HybridPoint& at, bool check_envelope, Index hint) {
-  Mesh& mesh = ws.mesh;
-  const std::vector<Index> old_tets = ws.edge_tets(a, b, hint);
-  if (old_tets.empty()) return kNoVertex;
-
-  std::vector<Tet> new_tets;
-  std::vector<std::size_t> origin;  // each old tet becomes two
-  new_tets.reserve(old_tets.size() * 2);
+std::optional<SplitPlan> plan_split(const Workspace& ws, Index a, Index b, const HybridPoint& at,
+                                    bool check_envelope, std::vector<Index> old_tets) {
+  const Mesh& mesh = ws.mesh;
+  SplitPlan plan;
+  plan.a = a;
+  plan.b = b;
+  plan.at = at;
+  plan.new_tets.reserve(old_tets.size() * 2);
   for (std::size_t i = 0; i < old_tets.size(); ++i) {
-    new_tets.push_back(replaced(mesh.tet(old_tets[i]), a, kNewVertex));
-    new_tets.push_back(replaced(mesh.tet(old_tets[i]), b, kNewVertex));
-    origin.insert(origin.end(), {i, i});
+    plan.new_tets.push_back(replaced(mesh.tet(old_tets[i]), a, kNewVertex));
+    plan.new_tets.push_back(replaced(mesh.tet(old_tets[i]), b, kNewVertex));
+    plan.origin.insert(plan.origin.end(), {i, i});  // each old tet becomes two
   }
   const Override moved{kNewVertex, &at};
-  if (!all_positive(mesh, new_tets, moved)) return kNoVertex;
+  if (!all_positive(mesh, plan.new_tets, moved)) return std::nullopt;
 
   std::vector<FaceCorners> halves;
   for (const TrackedFace& face : tracked_faces(mesh, old_tets)) {
@@ -58,21 +59,33 @@ Index try_split(Workspace& ws, Index a, Index b, const HybridPoint& at, bool che
     halves.push_back(first);
     halves.push_back(second);
   }
-  if (check_envelope && !faces_inside(ws, halves, moved)) return kNoVertex;
+  if (check_envelope && !faces_inside(ws, halves, moved)) return std::nullopt;
 
-  std::uint8_t flags = 0;
-  if (edge_on_hull(mesh, old_tets, a, b)) flags |= kOnBox;
-  if (mesh.has_flag(a, kLocked) && mesh.has_flag(b, kLocked)) flags |= kLocked;
+  if (edge_on_hull(mesh, old_tets, a, b)) plan.flags |= kOnBox;
+  if (mesh.has_flag(a, kLocked) && mesh.has_flag(b, kLocked)) plan.flags |= kLocked;
   if (mesh.has_flag(a, kOnBoundary) && mesh.has_flag(b, kOnBoundary) && halves.size() != 4) {
-    flags |= kOnBoundary;  // an open (or non-manifold) edge of the tracked surface
+    plan.flags |= kOnBoundary;  // an open (or non-manifold) edge of the tracked surface
   }
-  const Index m = mesh.add_vertex(at, flags);
-  const double size_a = a < ws.sizing.size() ? ws.sizing[a] : 1.0;
-  const double size_b = b < ws.sizing.size() ? ws.sizing[b] : 1.0;
+  plan.old_tets = std::move(old_tets);
+  return plan;
+}
+
+Index apply_split(Workspace& ws, SplitPlan plan) {
+  Mesh& mesh = ws.mesh;
+  const Index m = mesh.add_vertex(plan.at, plan.flags);
+  const double size_a = plan.a < ws.sizing.size() ? ws.sizing[plan.a] : 1.0;
+  const double size_b = plan.b < ws.sizing.size() ? ws.sizing[plan.b] : 1.0;
   ws.note_vertex(m, 0.5 * (size_a + size_b));
-  for (Tet& t : new_tets) std::replace(t.begin(), t.end(), kNewVertex, m);
-  replace_tets(ws, old_tets, new_tets, split_parents(a, b, m), origin);
+  for (Tet& t : plan.new_tets) std::replace(t.begin(), t.end(), kNewVertex, m);
+  replace_tets(ws, plan.old_tets, plan.new_tets, split_parents(plan.a, plan.b, m), plan.origin);
   return m;
+}
+
+Index try_split(Workspace& ws, Index a, Index b, const HybridPoint& at, bool check_envelope, Index hint) {
+  std::vector<Index> old_tets = ws.edge_tets(a, b, hint);
+  if (old_tets.empty()) return kNoVertex;
+  std::optional<SplitPlan> plan = plan_split(ws, a, b, at, check_envelope, std::move(old_tets));
+  return plan ? apply_split(ws, std::move(*plan)) : kNoVertex;
 }
 
 }  // namespace mr::tetmesh::improve_detail
