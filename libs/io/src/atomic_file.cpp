@@ -105,7 +105,14 @@ void write_atomically(const std::filesystem::path& destination,
   const Descriptor unnamed(::open(folder_of(destination).c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666));
   if (unnamed.get() < 0) return write_through_named_temporary(destination, write);
   write_naming_destination(descriptor_path(unnamed.get()), destination, write);
-  // Named only once complete, then moved over the destination in one rename.
+  // Named only once complete: as the destination itself where there is none yet.
+  if (::linkat(AT_FDCWD, descriptor_path(unnamed.get()).c_str(), AT_FDCWD, destination.c_str(),
+               AT_SYMLINK_FOLLOW) == 0)
+    return;
+  // Else under a hidden name, then moved over the destination in one rename.
+  // No call links a file over another, so a run killed outright (SIGKILL)
+  // between these two calls leaves the complete new output under the hidden
+  // name beside the previous one.
   const std::filesystem::path temp = temporary_sibling(destination);
   const UnfinishedFile listed(temp);
   if (::linkat(AT_FDCWD, descriptor_path(unnamed.get()).c_str(), AT_FDCWD, temp.c_str(), AT_SYMLINK_FOLLOW) !=
