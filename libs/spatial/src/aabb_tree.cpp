@@ -24,14 +24,34 @@ double box_squared_distance(const AabbTree::Node& node, const Vec3d& p) {
   return sum;
 }
 
-// Squared distance from p to the box of the triangle with corners c[0..2]:
-// a lower bound of its distance to the triangle, for a few operations.
+// Squared distance from p to a box (a triangle's: a lower bound of its
+// distance to the triangle, for a few operations).
 double box_squared_distance(const AabbBox& box, const Vec3d& p) {
   return (box.lo - p).cwiseMax(p - box.hi).cwiseMax(0.0).squaredNorm();
 }
 
-double triangle_box_squared_distance(const Vec3d* c, const Vec3d& p) {
-  return box_squared_distance({c[0].cwiseMin(c[1]).cwiseMin(c[2]), c[0].cwiseMax(c[1]).cwiseMax(c[2])}, p);
+AabbBox triangle_box(const Vec3d* c) {
+  return {c[0].cwiseMin(c[1]).cwiseMin(c[2]), c[0].cwiseMax(c[1]).cwiseMax(c[2])};
+}
+
+// Whether every point lies within squared distance r_sq of triangle c[0..2]
+// whose box is `box`: the boxes first (most triangles near one point are far
+// from another), then the exact distances, the last points first.
+bool triangle_near_all(const Vec3d* c, const AabbBox& box, std::span<const Vec3d> points, double r_sq) {
+  const auto box_near = [&](const Vec3d& p) { return box_squared_distance(box, p) <= r_sq; };
+  if (!std::all_of(points.begin(), points.end(), box_near)) return false;
+  return std::all_of(points.rbegin(), points.rend(), [&](const Vec3d& p) {
+    return squared_distance_to_triangle(p, c[0], c[1], c[2]) <= r_sq;
+  });
+}
+
+// The squared distance from p to triangle c[0..2] if it is at most
+// bound_sq, else +infinity; `box` (the triangle's, or a piece's) is tried first.
+double distance_sq_within(const Vec3d* c, const AabbBox& box, const Vec3d& p, double bound_sq) {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  if (box_squared_distance(box, p) > bound_sq) return kInfinity;
+  const double d_sq = squared_distance_to_triangle(p, c[0], c[1], c[2]);
+  return d_sq <= bound_sq ? d_sq : kInfinity;
 }
 
 // Drops the repeats (pieces of one triangle) from out[from, end), sorted.
@@ -148,11 +168,9 @@ AabbTree::BoundedHit AabbTree::nearest_bounded(const Vec3d& p, double accept_sq,
   double bound_sq = cap_sq;
   std::uint32_t found = kNoSlot;
   traverse(p, bound_sq, [&](std::uint32_t slot) {
-    const Vec3d* c = &corners_[3 * std::size_t{slot}];
     // The piece's own box first: a leaf's box holds four, and long
     // slivers in different directions leave most of it empty.
-    if (box_squared_distance(slot_box(slot), p) > bound_sq) return false;
-    const double d_sq = squared_distance_to_triangle(p, c[0], c[1], c[2]);
+    const double d_sq = distance_sq_within(&corners_[3 * std::size_t{slot}], slot_box(slot), p, bound_sq);
     if (d_sq > bound_sq) return false;
     bound_sq = d_sq;
     found = slot;
@@ -176,13 +194,7 @@ bool AabbTree::one_triangle_near_all(std::span<const Vec3d> points, double r_sq)
   traverse(points[0], bound_sq, [&](std::uint32_t slot) {
     if (std::exchange(last_triangle, triangle_ids_[slot]) == triangle_ids_[slot]) return false;
     const Vec3d* c = &corners_[3 * std::size_t{slot}];
-    // Most triangles near points[0] are far from another point: their box
-    // says so before any exact distance, and the last points decide first.
-    const auto box_near = [&](const Vec3d& p) { return triangle_box_squared_distance(c, p) <= r_sq; };
-    if (!std::all_of(points.begin(), points.end(), box_near)) return false;
-    found = std::all_of(points.rbegin(), points.rend(), [&](const Vec3d& p) {
-      return squared_distance_to_triangle(p, c[0], c[1], c[2]) <= r_sq;
-    });
+    found = triangle_near_all(c, triangle_box(c), points, r_sq);
     return found;
   });
   return found;
@@ -247,9 +259,8 @@ LocalTriangles::LocalTriangles(const AabbTree& tree, const Vec3d& lo, const Vec3
     return;
   }
   for (const auto& [triangle, slot] : found) {
-    const Vec3d* c = &tree.corners_[3 * std::size_t{slot}];
     slots_.push_back(slot);
-    boxes_.push_back({c[0].cwiseMin(c[1]).cwiseMin(c[2]), c[0].cwiseMax(c[1]).cwiseMax(c[2])});
+    boxes_.push_back(triangle_box(&tree.corners_[3 * std::size_t{slot}]));
   }
 }
 
@@ -259,9 +270,8 @@ AabbTree::BoundedHit LocalTriangles::nearest_bounded(const Vec3d& p, double acce
   double bound_sq = cap_sq;
   std::uint32_t found = AabbTree::kNoSlot;
   for (std::size_t i = 0; i < slots_.size(); ++i) {
-    if (box_squared_distance(boxes_[i], p) > bound_sq) continue;
-    const Vec3d* c = &tree_->corners_[3 * std::size_t{slots_[i]}];
-    const double d_sq = squared_distance_to_triangle(p, c[0], c[1], c[2]);
+    const double d_sq =
+        distance_sq_within(&tree_->corners_[3 * std::size_t{slots_[i]}], boxes_[i], p, bound_sq);
     if (d_sq > bound_sq) continue;
     bound_sq = d_sq;
     found = slots_[i];
@@ -273,15 +283,8 @@ AabbTree::BoundedHit LocalTriangles::nearest_bounded(const Vec3d& p, double acce
 
 bool LocalTriangles::one_triangle_near_all(std::span<const Vec3d> points, double r_sq) const {
   if (!(r_sq >= 0.0) || points.empty()) return false;
-  for (std::size_t i = 0; i < slots_.size(); ++i) {
-    const auto box_near = [&](const Vec3d& p) { return box_squared_distance(boxes_[i], p) <= r_sq; };
-    if (!std::all_of(points.begin(), points.end(), box_near)) continue;
-    const Vec3d* c = &tree_->corners_[3 * std::size_t{slots_[i]}];
-    if (std::all_of(points.rbegin(), points.rend(), [&](const Vec3d& p) {
-          return squared_distance_to_triangle(p, c[0], c[1], c[2]) <= r_sq;
-        }))
-      return true;
-  }
+  for (std::size_t i = 0; i < slots_.size(); ++i)
+    if (triangle_near_all(&tree_->corners_[3 * std::size_t{slots_[i]}], boxes_[i], points, r_sq)) return true;
   return false;
 }
 

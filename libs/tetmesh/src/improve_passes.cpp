@@ -153,19 +153,43 @@ bool collapse_either_way(Workspace& ws, Index a, Index b, TouchedVertices& touch
 }
 
 // With more than one thread, candidates are decided in batches, in
-// parallel, on the mesh as the batch found it, then applied in order. A
-// collapse changes only the tets around its removed vertex, so a decision
-// stands unless a collapse applied before it in the batch had either end
-// as a corner; those are decided again in turn. The result is the one
-// deciding them one by one gives (outputs are the same for any thread
-// count). Small batches: with 1,024 half of the accepted collapses were
-// decided twice (trimesh/teapot).
+// parallel, on the mesh as the batch found it, then applied in order; a
+// decision an operation applied before it in its batch may have changed is
+// taken again in turn (each pass says when). The result is the one deciding
+// them one by one gives: outputs are the same for any thread count.
+//
+// Runs plan_ahead(i) for the items of each batch in parallel, then
+// apply(i, ahead) in order, `ahead` pointing to what plan_ahead(i) gave
+// (null on one thread, where nothing is planned ahead). `touched` holds
+// the vertices the batch's operations changed; it is cleared after each.
+template <class Ahead, class PlanAhead, class Apply>
+void in_planned_batches(std::size_t count, std::size_t batch, TouchedVertices& touched, PlanAhead plan_ahead,
+                        Apply apply) {
+  const bool parallel = tbb::this_task_arena::max_concurrency() > 1;
+  std::vector<Ahead> planned;
+  for (std::size_t first = 0; first < count; first += batch) {
+    const std::size_t last = std::min(count, first + batch);
+    planned.assign(last - first, Ahead{});
+    if (parallel)
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 4),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t i = range.begin(); i != range.end(); ++i)
+                            planned[i - first] = plan_ahead(i);
+                        });
+    for (std::size_t i = first; i < last; ++i) apply(i, parallel ? &planned[i - first] : nullptr);
+    touched.clear();
+  }
+}
+
+// A collapse changes only the tets around its removed vertex, so a decision
+// stands unless a collapse applied before it had either end as a corner.
+// Small batches: with 1,024 half of the accepted collapses were decided
+// twice (trimesh/teapot).
 constexpr std::size_t kCollapseBatch = 48;
 
-// Splits are planned in batches, in parallel, then applied in order, as
-// collapses are: a plan reads the tets around its edge, which a split
-// applied before it changed only if it marked both ends; such plans, and
-// those whose collected tet no longer has the edge, are made again.
+// A split plan reads the tets around its edge, which a split applied
+// before it changed only if it marked both ends; such plans, and those
+// whose collected tet no longer has the edge, are made again.
 constexpr std::size_t kSplitBatch = 64;
 
 std::size_t split_pass(Workspace& ws) {
@@ -175,47 +199,34 @@ std::size_t split_pass(Workspace& ws) {
   const auto middle = [&](const EdgeCandidate& e) {
     return HybridPoint(Vec3d(0.5 * (mesh.position(e.a).approx + mesh.position(e.b).approx)));
   };
+  // Whether the collected tet still has the edge: a read-only plan starts there.
   const auto has_edge = [&](const EdgeCandidate& e) {
     return mesh.tet_alive(e.tet) && mesh.corner_of(e.tet, e.a) >= 0 && mesh.corner_of(e.tet, e.b) >= 0;
   };
   TouchedVertices touched(mesh.vertex_slots());
-  const auto apply = [&](SplitPlan plan) {
-    for (const Index t : plan.old_tets) touched.mark(mesh.tet(t));
-    apply_split(ws, std::move(plan));
-  };
-  const bool parallel = tbb::this_task_arena::max_concurrency() > 1;
-  std::vector<std::optional<SplitPlan>> planned;
-  std::vector<char> decided;
   std::size_t done = 0;
-  for (std::size_t first = 0; first < candidates.size(); first += kSplitBatch) {
-    const std::size_t last = std::min(candidates.size(), first + kSplitBatch);
-    planned.assign(last - first, std::nullopt);
-    decided.assign(last - first, 0);
-    if (parallel)
-      tbb::parallel_for(
-          tbb::blocked_range<std::size_t>(first, last, 4), [&](const tbb::blocked_range<std::size_t>& range) {
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-              const EdgeCandidate& e = candidates[i];
-              if (!has_edge(e)) continue;
-              decided[i - first] = 1;
-              planned[i - first] =
-                  plan_split(ws, e.a, e.b, middle(e), true, tets_around_edge(mesh, e.a, e.b, e.tet));
-            }
-          });
-    for (std::size_t i = first; i < last; ++i) {
-      const EdgeCandidate& e = candidates[i];
-      std::optional<SplitPlan>& plan = planned[i - first];
-      if (!decided[i - first] || (touched[e.a] && touched[e.b])) {
-        std::vector<Index> around = ws.edge_tets(e.a, e.b, e.tet);
-        if (around.empty()) continue;
-        plan = plan_split(ws, e.a, e.b, middle(e), true, std::move(around));
-      }
-      if (!plan) continue;
-      apply(std::move(*plan));
-      ++done;
+  const auto plan_ahead = [&](std::size_t i) -> std::optional<SplitPlan> {
+    const EdgeCandidate& e = candidates[i];
+    if (!has_edge(e)) return std::nullopt;
+    return plan_split(ws, e.a, e.b, middle(e), true, tets_around_edge(mesh, e.a, e.b, e.tet));
+  };
+  const auto apply = [&](std::size_t i, std::optional<SplitPlan>* ahead) {
+    const EdgeCandidate& e = candidates[i];
+    std::optional<SplitPlan> plan;
+    // A tet with both ends that a split made or removed marked both.
+    if (ahead != nullptr && has_edge(e) && !(touched[e.a] && touched[e.b])) {
+      plan = std::move(*ahead);
+    } else {
+      std::vector<Index> around = ws.edge_tets(e.a, e.b, e.tet);
+      if (around.empty()) return;
+      plan = plan_split(ws, e.a, e.b, middle(e), true, std::move(around));
     }
-    touched.clear();
-  }
+    if (!plan) return;
+    for (const Index t : plan->old_tets) touched.mark(mesh.tet(t));
+    apply_split(ws, std::move(*plan));
+    ++done;
+  };
+  in_planned_batches<std::optional<SplitPlan>>(candidates.size(), kSplitBatch, touched, plan_ahead, apply);
   return done;
 }
 
@@ -228,37 +239,25 @@ std::size_t collapse_pass(Workspace& ws) {
     return ws.mesh.vertex_alive(e.a) && ws.mesh.vertex_alive(e.b) &&
            edge_length(ws.mesh, e.a, e.b) < below * ws.target(e.a, e.b);
   };
-  const bool parallel = tbb::this_task_arena::max_concurrency() > 1;
-  // On one thread nothing is decided ahead: the batches only bound `decided`.
-  const std::size_t batch = kCollapseBatch;
   TouchedVertices touched(ws.mesh.vertex_slots());
-  std::vector<EdgeCollapse> decided;
   std::size_t done = 0;
-  for (std::size_t first = 0; first < candidates.size(); first += batch) {
-    const std::size_t last = std::min(candidates.size(), first + batch);
-    decided.assign(last - first, EdgeCollapse{EdgeCollapse::Kind::undecided, {}});
-    if (parallel)
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 4),
-                        [&](const tbb::blocked_range<std::size_t>& range) {
-                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                            const EdgeCandidate& e = candidates[i];
-                            if (still_short(e)) decided[i - first] = decide_edge_collapse(ws, e.a, e.b);
-                          }
-                        });
-    for (std::size_t i = first; i < last; ++i) {
-      const EdgeCandidate& e = candidates[i];
-      if (!still_short(e)) continue;
-      const EdgeCollapse& decision = decided[i - first];
-      if (decision.kind == EdgeCollapse::Kind::undecided || touched[e.a] || touched[e.b]) {
-        done += collapse_either_way(ws, e.a, e.b, touched) ? 1 : 0;
-      } else if (decision.kind == EdgeCollapse::Kind::planned) {
-        touched.mark(corners_of(ws.mesh, decision.plan.star_u));
-        apply_collapse(ws, decision.plan);
-        ++done;
-      }
+  const auto plan_ahead = [&](std::size_t i) {
+    const EdgeCandidate& e = candidates[i];
+    return still_short(e) ? decide_edge_collapse(ws, e.a, e.b)
+                          : EdgeCollapse{EdgeCollapse::Kind::undecided, {}};
+  };
+  const auto apply = [&](std::size_t i, const EdgeCollapse* ahead) {
+    const EdgeCandidate& e = candidates[i];
+    if (!still_short(e)) return;
+    if (ahead == nullptr || ahead->kind == EdgeCollapse::Kind::undecided || touched[e.a] || touched[e.b]) {
+      done += collapse_either_way(ws, e.a, e.b, touched) ? 1 : 0;
+    } else if (ahead->kind == EdgeCollapse::Kind::planned) {
+      touched.mark(corners_of(ws.mesh, ahead->plan.star_u));
+      apply_collapse(ws, ahead->plan);
+      ++done;
     }
-    touched.clear();
-  }
+  };
+  in_planned_batches<EdgeCollapse>(candidates.size(), kCollapseBatch, touched, plan_ahead, apply);
   return done;
 }
 
@@ -273,12 +272,10 @@ void count_swap(int kind, SwapCounts& counts) {
 
 }  // namespace
 
-// Swaps are planned in batches, in parallel, on the mesh as the batch found
-// it, then applied in order, as collapses are (see kCollapseBatch). A plan
-// for tet t read the tets around its edges and across its faces, each with
-// two of t's corners or more; a swap applied before it changes only tets
-// whose corners it marks, so the plan stands unless two of t's corners are
-// marked, and is made again then. The result is the one swapping tet by tet.
+// A swap plan for tet t read the tets around its edges and across its
+// faces, each with two of t's corners or more; a swap applied before it
+// changes only tets whose corners it marks, so the plan stands unless two
+// of t's corners are marked.
 constexpr std::size_t kSwapBatch = 64;
 
 SwapCounts swap_pass(Workspace& ws) {
@@ -299,32 +296,23 @@ SwapCounts swap_pass(Workspace& ws) {
     return mesh.tet_alive(t) && mesh.tet(t) == corners[i];
   };
 
-  const bool parallel = tbb::this_task_arena::max_concurrency() > 1;
   TouchedVertices touched(mesh.vertex_slots());
-  std::vector<std::optional<SwapPlan>> planned;
   SwapCounts counts;
-  for (std::size_t first = 0; first < bad.size(); first += kSwapBatch) {
-    const std::size_t last = std::min(bad.size(), first + kSwapBatch);
-    planned.assign(last - first, std::nullopt);
-    if (parallel)
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 4),
-                        [&](const tbb::blocked_range<std::size_t>& range) {
-                          for (std::size_t i = range.begin(); i != range.end(); ++i)
-                            if (unchanged(i)) planned[i - first] = plan_tet_swap(ws, bad[i].second);
-                        });
-    for (std::size_t i = first; i < last; ++i) {
-      if (!unchanged(i)) continue;
-      const Tet& c = corners[i];
-      const auto marked = std::count_if(c.begin(), c.end(), [&](Index v) { return touched[v]; });
-      std::optional<SwapPlan>& plan = planned[i - first];
-      if (!parallel || marked >= 2) plan = plan_tet_swap(ws, bad[i].second);
-      if (!plan) continue;
-      for (const Index t : plan->old_tets) touched.mark(mesh.tet(t));
-      apply_swap(ws, *plan);
-      count_swap(plan->kind, counts);
-    }
-    touched.clear();
-  }
+  const auto plan_ahead = [&](std::size_t i) {
+    return unchanged(i) ? plan_tet_swap(ws, bad[i].second) : std::nullopt;
+  };
+  const auto apply = [&](std::size_t i, std::optional<SwapPlan>* ahead) {
+    if (!unchanged(i)) return;
+    const Tet& c = corners[i];
+    const auto marked = std::count_if(c.begin(), c.end(), [&](Index v) { return touched[v]; });
+    const std::optional<SwapPlan> plan =
+        ahead != nullptr && marked < 2 ? std::move(*ahead) : plan_tet_swap(ws, bad[i].second);
+    if (!plan) return;
+    for (const Index t : plan->old_tets) touched.mark(mesh.tet(t));
+    apply_swap(ws, *plan);
+    count_swap(plan->kind, counts);
+  };
+  in_planned_batches<std::optional<SwapPlan>>(bad.size(), kSwapBatch, touched, plan_ahead, apply);
   return counts;
 }
 
